@@ -1,0 +1,97 @@
+// tessera bench: samples/s and rays/s on fixed scenes. A measurement, not a test.
+#include <algorithm>
+#include <filesystem>
+
+#include <fmt/format.h>
+
+#include "app/commands.h"
+#include "app/exit_codes.h"
+#include "app/render_setup.h"
+#include "renderer/image_output.h"
+#include "renderer/render.h"
+#include "scene_io/gltf_loader.h"
+
+#ifndef TESSERA_SCENES_DIR
+#define TESSERA_SCENES_DIR "scenes"
+#endif
+
+namespace tessera {
+
+namespace {
+
+const std::vector<std::string>& default_bench_scenes() {
+  static const std::vector<std::string> names = {
+      "cornell-box/cornell-box.gltf",
+      "khronos/BoxTextured/glTF-Binary/BoxTextured.glb",
+      "khronos/DamagedHelmet/glTF-Binary/DamagedHelmet.glb",
+      "khronos/MetalRoughSpheresNoTextures/glTF-Binary/MetalRoughSpheresNoTextures.glb",
+  };
+  return names;
+}
+
+struct BenchRow {
+  std::string name;
+  std::uint64_t triangles = 0;
+  int width = 0, height = 0;
+  double median_seconds = 0.0, samples_per_second = 0.0, rays_per_second = 0.0;
+};
+
+BenchRow bench_scene(const std::string& path, const BenchOptions& o) {
+  GltfLoadResult loaded = load_gltf(path);
+  BenchRow row;
+  row.name = std::filesystem::path(path).filename().string();
+  RenderSettings settings;
+  settings.width = o.width;
+  settings.height = 0;
+  const Camera* first = loaded.scene.cameras.empty() ? nullptr : &loaded.scene.cameras[0];
+  resolve_resolution(first, settings.width, settings.height);
+  settings.spp = o.spp;
+  settings.threads = o.threads;
+  const Camera camera = choose_camera(loaded.scene, "", settings.width, settings.height);
+  EnvironmentParams env;
+  env.background = vec3(scene_has_lights(loaded.scene) ? 0.0f : 1.0f);
+  RenderScene scene(std::move(loaded.scene), env);
+  row.triangles = scene.geometry->instanced_triangles();
+  row.width = settings.width;
+  row.height = settings.height;
+  const RenderCamera rc = make_camera(camera, settings.width, settings.height, {});
+  std::vector<RenderStats> runs;
+  for (int r = 0; r < o.repeat; ++r) runs.push_back(render_frame(scene, rc, settings).stats);
+  std::sort(runs.begin(), runs.end(), [](const RenderStats& a, const RenderStats& b) { return a.seconds < b.seconds; });
+  const RenderStats& median = runs[runs.size() / 2];
+  row.median_seconds = median.seconds;
+  row.samples_per_second = median.camera_samples / median.seconds;
+  row.rays_per_second = median.rays / median.seconds;
+  return row;
+}
+
+}  // namespace
+
+void add_bench_command(CLI::App& app, BenchOptions& o) {
+  CLI::App* cmd = app.add_subcommand("bench", "Measure samples/s and rays/s on fixed scenes (median of --repeat renders).");
+  cmd->add_option("scenes", o.scenes, "glTF files [default: the benchmark scenes shipped in scenes/]");
+  cmd->add_option("--spp", o.spp, "Samples per pixel")->check(CLI::Range(1, 1 << 16))->capture_default_str();
+  cmd->add_option("--width", o.width, "Image width (height from the camera's aspect ratio)")
+      ->check(CLI::Range(1, 8192))->capture_default_str();
+  cmd->add_option("--threads", o.threads, "Render threads [default: all cores]")->check(CLI::Range(1, 1024));
+  cmd->add_option("--repeat", o.repeat, "Renders per scene; the median is reported")->check(CLI::Range(1, 100))->capture_default_str();
+}
+
+int run_bench(const BenchOptions& o) {
+  std::vector<std::string> scenes = o.scenes;
+  if (scenes.empty())
+    for (const std::string& s : default_bench_scenes()) scenes.push_back(std::string(TESSERA_SCENES_DIR) + "/" + s);
+  const int threads = o.threads > 0 ? o.threads : default_thread_count();
+  fmt::print("tessera {} bench: {} spp, {} threads, median of {} renders, 8 bounces\n\n", tessera_version(), o.spp,
+             threads, o.repeat);
+  fmt::print("| scene | triangles | image | median s | M samples/s | M rays/s |\n|---|---:|---:|---:|---:|---:|\n");
+  for (const std::string& path : scenes) {
+    const BenchRow r = bench_scene(path, o);
+    fmt::print("| {} | {} | {}x{} | {:.3f} | {:.3f} | {:.3f} |\n", r.name, r.triangles, r.width, r.height,
+               r.median_seconds, r.samples_per_second * 1e-6, r.rays_per_second * 1e-6);
+    std::fflush(stdout);
+  }
+  return kExitSuccess;
+}
+
+}  // namespace tessera

@@ -1,0 +1,53 @@
+// The subcommands of the tessera program, each with one options struct.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+namespace tessera {
+
+struct RenderOptions {
+  std::string scene_path;
+  std::string output;  // default: <scene name>.exr
+  std::string preview;  // optional PNG (or any display format)
+  int width = 0, height = 0;  // 0 = from the other one and the camera's aspect ratio
+  int spp = 16;
+  int max_bounces = 8;
+  int threads = 0;
+  int tile_size = 32;
+  long long seed = 0;
+  std::string camera, scene;
+  float aperture = 0.0f, focus_distance = 0.0f, fov = 0.0f;
+  std::string background = "auto";
+  std::string envmap;
+  float envmap_scale = 1.0f, envmap_rotate = 0.0f;
+  std::vector<std::string> aovs;
+  bool half = false;
+  float exposure = 0.0f;
+  bool quiet = false;
+};
+
+struct InfoOptions {
+  std::string scene_path;
+  std::string scene;
+};
+
+struct BenchOptions {
+  std::vector<std::string> scenes;  // default: the benchmark scenes shipped in scenes/
+  int spp = 16;
+  int width = 640;
+  int threads = 0;
+  int repeat = 3;
+};
+
+void add_render_command(CLI::App& app, RenderOptions& options);
+void add_info_command(CLI::App& app, InfoOptions& options);
+void add_bench_command(CLI::App& app, BenchOptions& options);
+
+int run_render(const RenderOptions& options);
+int run_info(const InfoOptions& options);
+int run_bench(const BenchOptions& options);
+
+}  // namespace tessera

@@ -1,0 +1,74 @@
+// tessera info: what a glTF file holds, and what of it tessera supports.
+#include <fmt/format.h>
+
+#include "app/commands.h"
+#include "app/exit_codes.h"
+#include "scene_io/gltf_loader.h"
+
+namespace tessera {
+
+void add_info_command(CLI::App& app, InfoOptions& o) {
+  CLI::App* cmd = app.add_subcommand("info", "Print what a glTF 2.0 scene holds: triangles, meshes, materials, "
+                                             "textures, cameras, lights, bounds and extensions.");
+  cmd->add_option("scene", o.scene_path, "The glTF file")->required();
+  cmd->add_option("--scene", o.scene, "glTF scene by index or name [default: the file's default scene, else 0]");
+}
+
+namespace {
+
+std::string extension_list(const std::vector<std::string>& names) {
+  if (names.empty()) return "none";
+  std::string out;
+  for (const std::string& n : names)
+    out += fmt::format("{}{} ({})", out.empty() ? "" : ", ", n,
+                       is_supported_gltf_extension(n) ? "supported" : "not supported");
+  return out;
+}
+
+}  // namespace
+
+int run_info(const InfoOptions& o) {
+  GltfLoadResult loaded = load_gltf(o.scene_path, {o.scene});
+  for (const std::string& w : loaded.warnings) fmt::print(stderr, "tessera: warning: {}: {}\n", o.scene_path, w);
+  const SceneDescription& s = loaded.scene;
+  std::uint64_t unique = 0, placed = 0, primitives = 0;
+  for (const Mesh& m : s.meshes) {
+    primitives += m.primitives.size();
+    for (const TriangleMesh& p : m.primitives) unique += p.triangle_count();
+  }
+  for (const Instance& inst : s.instances)
+    for (const TriangleMesh& p : s.meshes[inst.mesh].primitives) placed += p.triangle_count();
+  std::size_t textured = 0;
+  for (const Image& img : s.images) textured += img.width > 0;
+
+  fmt::print("file        {}\n", o.scene_path);
+  fmt::print("scene       {}\n", s.scene_name.empty() ? "(all root nodes)" : s.scene_name);
+  fmt::print("triangles   {} unique, {} instanced (as placed in the scene)\n", unique, placed);
+  fmt::print("meshes      {} ({} primitives), placed {} times\n", s.meshes.size(), primitives, s.instances.size());
+  fmt::print("materials   {}\n", s.materials.size());
+  fmt::print("textures    {} images\n", textured);
+  fmt::print("cameras     {}\n", s.cameras.size());
+  for (std::size_t i = 0; i < s.cameras.size(); ++i) {
+    const Camera& c = s.cameras[i];
+    if (c.projection == Camera::Projection::Perspective)
+      fmt::print("  {}: '{}' perspective, vertical fov {:.2f} deg{}\n", i, c.name, glm::degrees(c.yfov),
+                 c.aspect_ratio > 0 ? fmt::format(", aspect {:.4g}", c.aspect_ratio) : "");
+    else
+      fmt::print("  {}: '{}' orthographic, xmag {:.4g}, ymag {:.4g}\n", i, c.name, c.xmag, c.ymag);
+  }
+  fmt::print("lights      {}\n", s.lights.size());
+  static const char* kLightTypes[] = {"point", "spot", "directional"};
+  for (std::size_t i = 0; i < s.lights.size(); ++i)
+    fmt::print("  {}: '{}' {}, intensity {:.4g} {}\n", i, s.lights[i].name, kLightTypes[static_cast<int>(s.lights[i].type)],
+               s.lights[i].intensity, s.lights[i].type == PunctualLight::Type::Directional ? "lux" : "cd");
+  if (s.bounds.empty())
+    fmt::print("bounds      empty\n");
+  else
+    fmt::print("bounds      ({:.4g}, {:.4g}, {:.4g}) .. ({:.4g}, {:.4g}, {:.4g})\n", s.bounds.lo.x, s.bounds.lo.y,
+               s.bounds.lo.z, s.bounds.hi.x, s.bounds.hi.y, s.bounds.hi.z);
+  fmt::print("extensions  used: {}\n", extension_list(s.extensions_used));
+  fmt::print("            required: {}\n", extension_list(s.extensions_required));
+  return kExitSuccess;
+}
+
+}  // namespace tessera

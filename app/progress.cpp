@@ -1,0 +1,66 @@
+#include "app/progress.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <string>
+
+#include <fmt/format.h>
+
+namespace tessera {
+
+std::string format_duration(double seconds) {
+  if (!(seconds >= 0.0) || seconds > 1e7) return "--:--";
+  const long s = static_cast<long>(seconds + 0.5);
+  if (s >= 3600) return fmt::format("{}:{:02}:{:02}", s / 3600, (s / 60) % 60, s % 60);
+  return fmt::format("{:02}:{:02}", s / 60, s % 60);
+}
+
+ProgressDisplay::ProgressDisplay(const RenderMonitor& monitor, std::uint64_t total_samples, bool quiet)
+    : monitor_(monitor), total_(total_samples), terminal_(::isatty(STDERR_FILENO) == 1),
+      start_(std::chrono::steady_clock::now()) {
+  if (!quiet && total_ > 0) thread_ = std::thread([this] { run(); });
+}
+
+ProgressDisplay::~ProgressDisplay() {
+  if (!thread_.joinable()) return;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_all();
+  thread_.join();
+  draw(true);
+}
+
+void ProgressDisplay::run() {
+  // A terminal gets a live bar; a log gets a line every 10 s.
+  const auto period = terminal_ ? std::chrono::milliseconds(200) : std::chrono::milliseconds(10000);
+  std::unique_lock<std::mutex> lock(mutex_);
+  while (!wake_.wait_for(lock, period, [this] { return stop_; })) draw(false);
+}
+
+void ProgressDisplay::draw(bool final_line) {
+  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  const std::uint64_t done = monitor_.samples_done.load(std::memory_order_relaxed);
+  const double fraction = total_ ? static_cast<double>(done) / total_ : 1.0;
+  const double rate = elapsed > 0 ? done / elapsed : 0.0;
+  const double eta = rate > 0 ? (total_ - done) / rate : -1.0;
+  std::string line;
+  if (terminal_) {
+    constexpr int kWidth = 30;
+    const int filled = static_cast<int>(fraction * kWidth);
+    line = fmt::format("\r[{}{}] {:5.1f}%  {} elapsed  ETA {}  {:.2f} M samples/s", std::string(filled, '#'),
+                       std::string(kWidth - filled, '.'), 100.0 * fraction, format_duration(elapsed),
+                       format_duration(eta), rate * 1e-6);
+    if (final_line) line += "\n";
+  } else {
+    if (final_line) return;  // the summary follows; a log needs no closing bar
+    line = fmt::format("rendering: {:.1f}% done, {} elapsed, ETA {}, {:.2f} M samples/s\n", 100.0 * fraction,
+                       format_duration(elapsed), format_duration(eta), rate * 1e-6);
+  }
+  std::fputs(line.c_str(), stderr);
+  std::fflush(stderr);
+}
+
+}  // namespace tessera

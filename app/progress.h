@@ -1,0 +1,38 @@
+// Render progress on stderr: a one-line bar with percent, elapsed, ETA and samples/s when
+// stderr is a terminal, a plain line every few seconds otherwise, nothing when quiet.
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <mutex>
+#include <thread>
+
+#include "renderer/render.h"
+
+namespace tessera {
+
+class ProgressDisplay {
+ public:
+  ProgressDisplay(const RenderMonitor& monitor, std::uint64_t total_samples, bool quiet);
+  ~ProgressDisplay();  // stops the display and ends the line
+  ProgressDisplay(const ProgressDisplay&) = delete;
+  ProgressDisplay& operator=(const ProgressDisplay&) = delete;
+
+ private:
+  void run();
+  void draw(bool final_line);
+
+  const RenderMonitor& monitor_;
+  std::uint64_t total_;
+  bool terminal_;
+  std::chrono::steady_clock::time_point start_;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  bool stop_ = false;
+  std::thread thread_;
+};
+
+std::string format_duration(double seconds);
+
+}  // namespace tessera

@@ -1,0 +1,180 @@
+// tessera render: glTF in, HDR OpenEXR (and an optional preview) out.
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+
+#include <fmt/format.h>
+
+#include "app/commands.h"
+#include "app/exit_codes.h"
+#include "app/progress.h"
+#include "app/render_setup.h"
+#include "renderer/image_output.h"
+#include "renderer/render.h"
+#include "scene_io/gltf_loader.h"
+
+namespace tessera {
+
+void add_render_command(CLI::App& app, RenderOptions& o) {
+  CLI::App* cmd = app.add_subcommand("render", "Render a glTF 2.0 scene (.gltf or .glb) to an HDR OpenEXR frame.");
+  cmd->add_option("scene", o.scene_path, "The glTF file to render")->required();
+  cmd->add_option("-o,--output", o.output,
+                  "Output image; .exr writes float RGBA with AOV layers and render metadata, other "
+                  "extensions (.png .jpg .ppm .hdr .tif ...) go through OpenImageIO [default: SCENE_NAME.exr]");
+  cmd->add_option("--preview", o.preview, "Also write a display-referred preview (sRGB, with --exposure), e.g. out.png");
+  cmd->add_option("--width", o.width, "Image width in pixels [default: 960, or from --height and the camera's aspect ratio]")
+      ->check(CLI::Range(1, 32768));
+  cmd->add_option("--height", o.height, "Image height in pixels [default: from the width and the camera's aspect ratio]")
+      ->check(CLI::Range(1, 32768));
+  cmd->add_option("--spp", o.spp, "Samples per pixel")->check(CLI::Range(1, 1 << 24))->capture_default_str();
+  cmd->add_option("--max-bounces", o.max_bounces, "Most scattering events per path (0: emitters and environment only)")
+      ->check(CLI::Range(0, 1024))->capture_default_str();
+  cmd->add_option("--threads", o.threads, "Render threads [default: all cores]")->check(CLI::Range(1, 1024));
+  cmd->add_option("--tile-size", o.tile_size, "Tile edge in pixels; tiles are handed to threads dynamically")
+      ->check(CLI::Range(1, 4096))->capture_default_str();
+  cmd->add_option("--seed", o.seed, "Seed of every random number (same seed, same image, for any thread count)")
+      ->check(CLI::Range(0LL, 2147483647LL))->capture_default_str();
+  cmd->add_option("--camera", o.camera, "Camera by index or name [default: the scene's first, else an automatic camera framing the scene]");
+  cmd->add_option("--scene", o.scene, "glTF scene by index or name [default: the file's default scene, else 0]");
+  cmd->add_option("--aperture", o.aperture, "Thin-lens aperture diameter in scene units (0: pinhole)")
+      ->check(CLI::Range(0.0f, 1e6f))->capture_default_str();
+  cmd->add_option("--focus-distance", o.focus_distance,
+                  "Distance to the plane in focus [default: what the image centre sees]")
+      ->check(CLI::Range(0.0f, 1e9f));
+  cmd->add_option("--fov", o.fov, "Vertical field of view in degrees, overriding a perspective camera's")
+      ->check(CLI::Range(0.01f, 179.0f));
+  cmd->add_option("--background", o.background,
+                  "Uniform background radiance R,G,B, or 'auto': black when the scene has lights "
+                  "(punctual or emissive), else white 1,1,1")
+      ->capture_default_str();
+  cmd->add_option("--envmap", o.envmap, "Equirectangular environment image (.hdr, .exr, ...) lighting the scene");
+  cmd->add_option("--envmap-scale", o.envmap_scale, "Multiplier on the environment image's radiance")
+      ->check(CLI::Range(0.0f, 1e9f))->capture_default_str();
+  cmd->add_option("--envmap-rotate", o.envmap_rotate, "Rotation of the environment about +Y, degrees")
+      ->capture_default_str();
+  cmd->add_option("--aov", o.aovs, "Extra EXR layers: albedo (Albedo.RGB), normal (N.XYZ, world space), depth (Z)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"albedo", "normal", "depth"}));
+  cmd->add_flag("--half", o.half, "Write 16-bit half floats to the EXR instead of 32-bit floats");
+  cmd->add_option("--exposure", o.exposure, "Exposure in stops for display formats (PNG, JPEG, ...)")
+      ->check(CLI::Range(-64.0f, 64.0f))->capture_default_str();
+  cmd->add_flag("-q,--quiet", o.quiet, "No progress and no summary (warnings and errors still print)");
+}
+
+namespace {
+
+vec3 parse_background(const std::string& text, bool scene_has_lights) {
+  if (text == "auto") return vec3(scene_has_lights ? 0.0f : 1.0f);
+  vec3 c;
+  char tail;
+  const int n = std::sscanf(text.c_str(), "%f,%f,%f%c", &c.r, &c.g, &c.b, &tail);
+  if (n == 1) c = vec3(c.r);
+  else if (n != 3) throw UsageError("--background " + text + ": expected R,G,B (three numbers), one number, or auto");
+  if (!is_finite(c) || glm::any(glm::lessThan(c, vec3(0.0f))))
+    throw UsageError("--background " + text + ": values must be finite and not negative");
+  return c;
+}
+
+std::string default_output(const std::string& scene_path) {
+  return std::filesystem::path(scene_path).stem().string() + ".exr";
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+}  // namespace
+
+int run_render(const RenderOptions& o) {
+  const std::string output = o.output.empty() ? default_output(o.scene_path) : o.output;
+  check_output_path(output);  // before any work: a bad path costs nothing
+  if (!o.preview.empty()) check_output_path(o.preview);
+
+  auto t0 = std::chrono::steady_clock::now();
+  GltfLoadResult loaded = load_gltf(o.scene_path, {o.scene});
+  for (const std::string& w : loaded.warnings) fmt::print(stderr, "tessera: warning: {}: {}\n", o.scene_path, w);
+  const double load_seconds = seconds_since(t0);
+
+  RenderSettings settings;
+  settings.width = o.width;
+  settings.height = o.height;
+  const Camera* scene_camera = nullptr;
+  Camera probe;  // the chosen camera decides the aspect ratio before the size is known
+  if (!loaded.scene.cameras.empty() || !o.camera.empty()) {
+    probe = choose_camera(loaded.scene, o.camera, 16, 9);
+    scene_camera = &probe;
+  }
+  resolve_resolution(scene_camera, settings.width, settings.height);
+  if (static_cast<double>(settings.width) * settings.height > (1u << 28))
+    throw UsageError(fmt::format("--width {} --height {}: more than 268 million pixels", settings.width, settings.height));
+  const Camera camera = choose_camera(loaded.scene, o.camera, settings.width, settings.height);
+  settings.spp = o.spp;
+  settings.max_bounces = o.max_bounces;
+  settings.threads = o.threads;
+  settings.tile_size = o.tile_size;
+  settings.seed = static_cast<std::uint32_t>(o.seed);
+  for (const std::string& a : o.aovs) {
+    settings.aovs.albedo |= a == "albedo";
+    settings.aovs.normal |= a == "normal";
+    settings.aovs.depth |= a == "depth";
+  }
+
+  EnvironmentParams env;
+  env.background = parse_background(o.background, scene_has_lights(loaded.scene));
+  env.image_path = o.envmap;
+  env.scale = o.envmap_scale;
+  env.rotate_degrees = o.envmap_rotate;
+  const std::uint64_t triangles_in_file = [&] {
+    std::uint64_t n = 0;
+    for (const Mesh& m : loaded.scene.meshes)
+      for (const TriangleMesh& p : m.primitives) n += p.triangle_count();
+    return n;
+  }();
+  t0 = std::chrono::steady_clock::now();
+  RenderScene scene(std::move(loaded.scene), env);
+  const double setup_seconds = seconds_since(t0);
+
+  CameraParams cam_params{o.fov, o.aperture, o.focus_distance};
+  RenderCamera rc = make_camera(camera, settings.width, settings.height, cam_params);
+  if (o.aperture > 0.0f && o.focus_distance <= 0.0f) rc.focus_distance = autofocus_distance(scene, rc);
+
+  RenderMonitor monitor;
+  RenderResult result;
+  {
+    ProgressDisplay progress(monitor, static_cast<std::uint64_t>(settings.width) * settings.height * settings.spp, o.quiet);
+    result = render_frame(scene, rc, settings, &monitor);
+  }
+
+  ImageWriteParams write;
+  write.half = o.half;
+  write.exposure = o.exposure;
+  FrameMetadata& meta = write.metadata;
+  meta.render_seconds = result.stats.seconds;
+  meta.seed = settings.seed;
+  meta.threads = result.stats.threads;
+  meta.tile_size = settings.tile_size;
+  meta.max_bounces = settings.max_bounces;
+  meta.dropped_samples = result.stats.dropped_samples;
+  meta.world_to_camera = rc.world_to_camera();
+  meta.world_to_ndc = rc.world_to_ndc();
+  meta.scene_path = o.scene_path;
+  meta.camera_name = camera.name;
+  write_image(output, result.image, write);
+  if (!o.preview.empty()) write_image(o.preview, result.image, write);
+
+  if (!o.quiet) {
+    const RenderStats& s = result.stats;
+    fmt::print(stderr,
+               "tessera: {}: {} triangles; load {:.2f} s, BVH and textures {:.2f} s (BVH {:.2f} s), render {:.2f} s\n"
+               "tessera: {}x{}, {} spp, {} threads, tile {}: {:.3f} M samples/s, {:.3f} M rays/s{}\n"
+               "tessera: wrote {}{}\n",
+               o.scene_path, triangles_in_file, load_seconds, setup_seconds, scene.bvh_build_seconds, s.seconds,
+               settings.width, settings.height, result.image.samples_per_pixel, s.threads, settings.tile_size,
+               s.camera_samples / s.seconds * 1e-6, s.rays / s.seconds * 1e-6,
+               s.dropped_samples ? fmt::format(", {} non-finite samples dropped", s.dropped_samples) : "",
+               output, o.preview.empty() ? "" : " and " + o.preview);
+  }
+  return kExitSuccess;
+}
+
+}  // namespace tessera

@@ -1,0 +1,54 @@
+#include "app/render_setup.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "app/exit_codes.h"
+
+namespace tessera {
+
+Camera choose_camera(const SceneDescription& scene, const std::string& choice, int width, int height) {
+  if (choice.empty()) return scene.cameras.empty() ? auto_camera(scene.bounds, width, height) : scene.cameras[0];
+  for (const Camera& c : scene.cameras)
+    if (c.name == choice) return c;
+  const bool numeric = !choice.empty() && choice.size() < 9 && std::all_of(choice.begin(), choice.end(), ::isdigit);
+  if (numeric && std::stoi(choice) < static_cast<int>(scene.cameras.size())) return scene.cameras[std::stoi(choice)];
+  std::string names;
+  for (std::size_t i = 0; i < scene.cameras.size(); ++i)
+    names += fmt::format("{}{} '{}'", i ? ", " : "", i, scene.cameras[i].name);
+  throw UsageError(fmt::format("--camera {}: {} has no such camera ({})", choice, scene.source_path,
+                               names.empty() ? "it has no cameras" : "it has " + names));
+}
+
+void resolve_resolution(const Camera* camera, int& width, int& height) {
+  const float aspect = default_aspect(camera);
+  if (width <= 0 && height <= 0) width = 960;
+  if (width <= 0) width = std::max(1, static_cast<int>(std::lround(height * aspect)));
+  if (height <= 0) height = std::max(1, static_cast<int>(std::lround(width / aspect)));
+}
+
+bool scene_has_lights(const SceneDescription& scene) {
+  if (!scene.lights.empty()) return true;
+  for (const Instance& inst : scene.instances)
+    for (const TriangleMesh& prim : scene.meshes[inst.mesh].primitives)
+      if (prim.material >= 0) {
+        const Material& m = scene.materials[prim.material];
+        if (m.emissive_strength > 0.0f && max_component(m.emissive_factor) > 0.0f) return true;
+      }
+  return false;
+}
+
+float autofocus_distance(const RenderScene& scene, const RenderCamera& camera) {
+  RenderCamera pinhole = camera;
+  pinhole.lens_radius = 0.0f;
+  const Ray ray = pinhole.generate_ray({0.5f, 0.5f}, {0.5f, 0.5f});
+  HitRecord hit;
+  if (scene.geometry->intersect(ray, hit)) return hit.t * glm::dot(ray.direction, camera.forward());
+  const Bounds3& b = scene.description.bounds;
+  const float d = b.empty() ? 1.0f : glm::dot(b.center() - camera.position(), camera.forward());
+  return d > 0.0f ? d : 1.0f;
+}
+
+}  // namespace tessera

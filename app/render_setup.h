@@ -1,0 +1,27 @@
+// Turning a loaded scene and command-line choices into what render_frame needs; shared by
+// the render and bench commands so both set scenes up the same way.
+#pragma once
+
+#include <string>
+
+#include "renderer/camera.h"
+#include "renderer/render_scene.h"
+#include "renderer/scene/scene.h"
+
+namespace tessera {
+
+// The camera named or numbered by `choice` (empty: the scene's first camera, else an
+// automatic one). Throws UsageError for a camera the scene does not have.
+Camera choose_camera(const SceneDescription& scene, const std::string& choice, int width, int height);
+
+// Image size from the requested width/height (0 = not given) and the camera's aspect
+// ratio; 960 pixels wide when neither is given.
+void resolve_resolution(const Camera* camera, int& width, int& height);
+
+// True when the scene has its own light: a punctual light or an emissive material in use.
+bool scene_has_lights(const SceneDescription& scene);
+
+// Distance along the view axis to what the centre of the image sees, for autofocus.
+float autofocus_distance(const RenderScene& scene, const RenderCamera& camera);
+
+}  // namespace tessera

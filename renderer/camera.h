@@ -1,0 +1,43 @@
+// The render camera: a glTF perspective or orthographic camera (or an automatic one that
+// frames the scene), with an optional thin lens for depth of field.
+#pragma once
+
+#include "renderer/ray.h"
+#include "renderer/scene/scene.h"
+
+namespace tessera {
+
+struct CameraParams {
+  float fov_degrees = 0.0f;  // > 0 overrides a perspective camera's vertical field of view
+  float aperture = 0.0f;  // lens diameter in scene units; 0 = pinhole
+  float focus_distance = 0.0f;  // 0 = chosen by the caller (see render.cpp)
+};
+
+struct RenderCamera {
+  Camera::Projection projection = Camera::Projection::Perspective;
+  glm::mat4 camera_to_world{1.0f};
+  float tan_half_fov_y = 0.0f;  // perspective
+  float half_height = 1.0f;  // orthographic: ymag
+  float aspect = 1.0f;  // image width / height
+  float lens_radius = 0.0f, focus_distance = 1.0f;
+  float znear = 0.0f, zfar = 0.0f;
+
+  // film: position on the image in [0,1]^2, (0,0) the top-left corner; lens in [0,1)^2.
+  Ray generate_ray(const vec2& film, const vec2& lens) const;
+  vec3 forward() const { return -glm::vec3(camera_to_world[2]); }
+  vec3 position() const { return glm::vec3(camera_to_world[3]); }
+  glm::mat4 world_to_camera() const;
+  glm::mat4 world_to_ndc() const;  // camera space -> [-1,1]^2 screen, z = depth
+};
+
+// The camera from the scene description (vertical fov, aspect from the image).
+RenderCamera make_camera(const Camera& cam, int width, int height, const CameraParams& params);
+
+// A perspective camera on +Z of the bounds' centre looking down -Z that frames the bounding
+// sphere (a 50 mm lens on a 36 mm film, as the Cycles comparison script sets up).
+Camera auto_camera(const Bounds3& bounds, int width, int height);
+
+// Width / height of the image for a camera: the camera's aspect ratio, else 16:9.
+float default_aspect(const Camera* cam);
+
+}  // namespace tessera

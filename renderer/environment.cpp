@@ -1,0 +1,59 @@
+#include "renderer/environment.h"
+
+#include <stdexcept>
+
+#include <OpenImageIO/imageio.h>
+
+namespace tessera {
+
+Environment::Environment(const EnvironmentParams& params)
+    : background_(params.background), scale_(params.scale) {
+  const float rot = glm::radians(params.rotate_degrees);
+  cos_rot_ = std::cos(rot);
+  sin_rot_ = std::sin(rot);
+  if (params.image_path.empty()) return;
+  const std::string& path = params.image_path;
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) throw std::invalid_argument(path + ": cannot be read as an image (" + OIIO::geterror() + ")");
+  const OIIO::ImageSpec& spec = in->spec();
+  if (spec.width < 2 || spec.height < 1 || spec.nchannels < 1 ||
+      static_cast<double>(spec.width) * spec.height > 1 << 28)
+    throw std::invalid_argument(path + ": has an unusable size for an environment map");
+  std::vector<float> pixels(static_cast<std::size_t>(spec.width) * spec.height * spec.nchannels);
+  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data()))
+    throw std::invalid_argument(path + ": could not be decoded (" + in->geterror() + ")");
+  width_ = spec.width;
+  height_ = spec.height;
+  texels_.resize(static_cast<std::size_t>(width_) * height_);
+  const int nc = spec.nchannels;
+  for (std::size_t i = 0; i < texels_.size(); ++i) {
+    vec3 c = nc >= 3 ? vec3(pixels[i * nc], pixels[i * nc + 1], pixels[i * nc + 2]) : vec3(pixels[i * nc]);
+    // Negative or non-finite texels would poison every estimate that sees them.
+    for (int k = 0; k < 3; ++k) c[k] = std::isfinite(c[k]) && c[k] > 0.0f ? c[k] : 0.0f;
+    texels_[i] = c;
+  }
+}
+
+vec2 Environment::direction_to_uv(const vec3& d) const {
+  // Rotate the world direction into the map's frame (the map turns by +rotate about +Y).
+  const float x = cos_rot_ * d.x - sin_rot_ * d.z, z = sin_rot_ * d.x + cos_rot_ * d.z;
+  const float u = 0.5f + std::atan2(-z, -x) * (0.5f * kInvPi);
+  const float v = 0.5f - std::asin(glm::clamp(d.y, -1.0f, 1.0f)) * kInvPi;
+  return {u, v};
+}
+
+vec3 Environment::radiance(const vec3& direction) const {
+  if (width_ == 0) return background_;
+  const vec2 uv = direction_to_uv(direction);
+  // Bilinear: wrap in u (longitude), clamp in v (latitude).
+  const float x = uv.x * width_ - 0.5f, y = glm::clamp(uv.y * height_ - 0.5f, 0.0f, height_ - 1.0f);
+  const int x0 = static_cast<int>(std::floor(x)), y0 = static_cast<int>(y);
+  const float fx = x - x0, fy = y - y0;
+  const int y1 = std::min(y0 + 1, height_ - 1);
+  auto at = [&](int i, int j) { return texels_[static_cast<std::size_t>(j) * width_ + ((i % width_) + width_) % width_]; };
+  const vec3 c = (1 - fx) * (1 - fy) * at(x0, y0) + fx * (1 - fy) * at(x0 + 1, y0) +
+                 (1 - fx) * fy * at(x0, y1) + fx * fy * at(x0 + 1, y1);
+  return c * scale_;
+}
+
+}  // namespace tessera

@@ -1,0 +1,39 @@
+// What a ray that leaves the scene sees: a uniform background radiance, or an
+// equirectangular environment image (any format OpenImageIO reads, .hdr and .exr above all).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "renderer/math.h"
+
+namespace tessera {
+
+struct EnvironmentParams {
+  vec3 background{0.0f};  // radiance of a uniform background (used when no image)
+  std::string image_path;  // equirectangular image; empty = none
+  float scale = 1.0f;  // radiance multiplier for the image
+  float rotate_degrees = 0.0f;  // rotation about +Y
+};
+
+class Environment {
+ public:
+  // Throws std::invalid_argument naming the file when the image cannot be read.
+  explicit Environment(const EnvironmentParams& params);
+
+  vec3 radiance(const vec3& direction) const;
+  bool has_image() const { return width_ > 0; }
+
+  // Image coordinates in [0,1]^2 (u right, v down) of a world direction. Matches Blender's
+  // equirectangular mapping so the same file lights the same way in both.
+  vec2 direction_to_uv(const vec3& direction) const;
+
+ private:
+  vec3 background_;
+  float scale_;
+  float cos_rot_ = 1.0f, sin_rot_ = 0.0f;
+  int width_ = 0, height_ = 0;
+  std::vector<vec3> texels_;  // linear RGB, top row first
+};
+
+}  // namespace tessera

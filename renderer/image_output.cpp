@@ -1,0 +1,193 @@
+#include "renderer/image_output.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+
+#include <Imath/half.h>
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfIntAttribute.h>
+#include <OpenEXR/ImfFloatAttribute.h>
+#include <OpenEXR/ImfDoubleAttribute.h>
+#include <OpenEXR/ImfMatrixAttribute.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfStringAttribute.h>
+#include <OpenImageIO/imageio.h>
+
+#include "renderer/texture.h"
+
+#ifndef TESSERA_VERSION
+#define TESSERA_VERSION "unknown"
+#endif
+
+namespace tessera {
+
+std::string tessera_version() { return TESSERA_VERSION; }
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string lower_extension(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
+  return ext;
+}
+
+bool is_float_format(const std::string& ext) {
+  return ext == ".hdr" || ext == ".tif" || ext == ".tiff" || ext == ".pfm";
+}
+
+Imath::M44f to_imath(const glm::mat4& m) {
+  // Imath multiplies row vectors (v * M): its [i][j] is glm's column i, row j.
+  Imath::M44f out;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) out[i][j] = m[i][j];
+  return out;
+}
+
+// One EXR channel from interleaved floats, converted to half when asked.
+struct ChannelData {
+  std::string name;
+  std::vector<float> f;
+  std::vector<Imath::half> h;
+};
+
+void add_channels(std::vector<ChannelData>& out, const std::vector<float>& src, int stride,
+                  const std::vector<std::string>& names) {
+  const std::size_t n = src.size() / stride;
+  for (int c = 0; c < static_cast<int>(names.size()); ++c) {
+    ChannelData ch{names[c], std::vector<float>(n), {}};
+    for (std::size_t i = 0; i < n; ++i) ch.f[i] = src[i * stride + c];
+    out.push_back(std::move(ch));
+  }
+}
+
+void write_exr(const std::string& path, const FrameImage& img, const ImageWriteParams& params) {
+  std::vector<ChannelData> channels;
+  add_channels(channels, img.rgb, 3, {"R", "G", "B"});
+  channels.push_back({"A", std::vector<float>(static_cast<std::size_t>(img.width) * img.height, 1.0f), {}});
+  if (!img.albedo.empty()) add_channels(channels, img.albedo, 3, {"Albedo.R", "Albedo.G", "Albedo.B"});
+  if (!img.normal.empty()) add_channels(channels, img.normal, 3, {"N.X", "N.Y", "N.Z"});
+  if (!img.depth.empty()) add_channels(channels, img.depth, 1, {"Z"});
+
+  const FrameMetadata& m = params.metadata;
+  Imf::Header header(img.width, img.height);
+  header.compression() = Imf::ZIP_COMPRESSION;
+  header.insert("samplesPerPixel", Imf::IntAttribute(img.samples_per_pixel));
+  header.insert("renderTimeSeconds", Imf::DoubleAttribute(m.render_seconds));
+  header.insert("seed", Imf::IntAttribute(static_cast<int>(m.seed)));
+  header.insert("threads", Imf::IntAttribute(m.threads));
+  header.insert("tileSize", Imf::IntAttribute(m.tile_size));
+  header.insert("maxBounces", Imf::IntAttribute(m.max_bounces));
+  header.insert("droppedSamples", Imf::DoubleAttribute(static_cast<double>(m.dropped_samples)));
+  header.insert("worldToCamera", Imf::M44fAttribute(to_imath(m.world_to_camera)));
+  header.insert("worldToNDC", Imf::M44fAttribute(to_imath(m.world_to_ndc)));
+  header.insert("software", Imf::StringAttribute("tessera " + tessera_version()));
+  header.insert("tesseraVersion", Imf::StringAttribute(tessera_version()));
+  if (!m.scene_path.empty()) header.insert("scene", Imf::StringAttribute(m.scene_path));
+  if (!m.camera_name.empty()) header.insert("camera", Imf::StringAttribute(m.camera_name));
+
+  const Imf::PixelType type = params.half ? Imf::HALF : Imf::FLOAT;
+  Imf::FrameBuffer fb;
+  for (ChannelData& ch : channels) {
+    header.channels().insert(ch.name, Imf::Channel(type));
+    char* base;
+    std::size_t size;
+    if (params.half) {
+      ch.h.assign(ch.f.begin(), ch.f.end());
+      base = reinterpret_cast<char*>(ch.h.data());
+      size = sizeof(Imath::half);
+    } else {
+      base = reinterpret_cast<char*>(ch.f.data());
+      size = sizeof(float);
+    }
+    fb.insert(ch.name, Imf::Slice(type, base, size, size * img.width));
+  }
+  Imf::OutputFile file(path.c_str(), header);
+  file.setFrameBuffer(fb);
+  file.writePixels(img.height);
+}
+
+void write_oiio(const std::string& path, const FrameImage& img, const ImageWriteParams& params) {
+  auto out = OIIO::ImageOutput::create(path);
+  if (!out) throw OutputError(path + ": no image writer for this format (" + OIIO::geterror() + ")");
+  const bool linear_float = is_float_format(lower_extension(path));
+  OIIO::ImageSpec spec(img.width, img.height, 3, linear_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
+  spec.attribute("Software", "tessera " + tessera_version());
+  if (!out->open(path, spec)) throw OutputError(path + ": " + out->geterror());
+  bool ok;
+  if (linear_float) {
+    const float scale = std::exp2(params.exposure);
+    std::vector<float> scaled(img.rgb);
+    for (float& v : scaled) v *= scale;
+    ok = out->write_image(OIIO::TypeDesc::FLOAT, scaled.data());
+  } else {
+    const std::vector<std::uint8_t> rgb = to_display_rgb8(img, params.exposure);
+    ok = out->write_image(OIIO::TypeDesc::UINT8, rgb.data());
+  }
+  if (!ok || !out->close()) throw OutputError(path + ": " + out->geterror());
+}
+
+fs::path temporary_sibling(const fs::path& target) {
+  // Same directory (so rename is atomic), same extension (so writers pick the format).
+  return target.parent_path() /
+         (".tessera-tmp-" + std::to_string(::getpid()) + "-" + target.filename().string());
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> to_display_rgb8(const FrameImage& image, float exposure) {
+  const float scale = std::exp2(exposure);
+  std::vector<std::uint8_t> out(image.rgb.size());
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const float v = glm::clamp(image.rgb[i] * scale, 0.0f, 1.0f);
+    const float s = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
+    out[i] = static_cast<std::uint8_t>(s * 255.0f + 0.5f);
+  }
+  return out;
+}
+
+void check_output_path(const std::string& path) {
+  if (path.empty()) throw OutputError("output path is empty");
+  const fs::path p(path);
+  const std::string ext = lower_extension(path);
+  if (ext != ".exr") {
+    auto writer = OIIO::ImageOutput::create(path);
+    if (!writer) throw OutputError(path + ": unknown image format '" + ext + "' (use .exr, .png, .jpg, .ppm, .hdr, .tif, ...)");
+  }
+  std::error_code ec;
+  if (fs::is_directory(p, ec)) throw OutputError(path + ": is a directory");
+  const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
+  if (!fs::is_directory(dir, ec)) throw OutputError(path + ": directory " + dir.string() + " does not exist");
+  if (::access(dir.c_str(), W_OK) != 0) throw OutputError(path + ": directory " + dir.string() + " is not writable");
+}
+
+void write_image(const std::string& path, const FrameImage& image, const ImageWriteParams& params) {
+  check_output_path(path);
+  const fs::path target(path);
+  const fs::path tmp = temporary_sibling(target);
+  try {
+    if (lower_extension(path) == ".exr") write_exr(tmp.string(), image, params);
+    else write_oiio(tmp.string(), image, params);
+  } catch (const std::exception& e) {
+    std::error_code ec;
+    fs::remove(tmp, ec);
+    const std::string what = e.what();
+    throw OutputError(what.rfind(path, 0) == 0 ? what : path + ": " + what);
+  }
+  if (std::rename(tmp.c_str(), target.c_str()) != 0) {
+    const std::string reason = std::strerror(errno);
+    std::error_code ec;
+    fs::remove(tmp, ec);
+    throw OutputError(path + ": cannot be replaced: " + reason);
+  }
+}
+
+}  // namespace tessera

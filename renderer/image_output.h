@@ -1,0 +1,49 @@
+// Writes frames: OpenEXR (float or half RGBA, AOV layers, render metadata in the header)
+// and, through OpenImageIO, display formats (PNG, JPEG, PPM, ...: exposure, sRGB, 8 bit) or
+// float formats (.hdr, .tif, .pfm). Every file is written under a temporary name beside
+// its destination and renamed into place, so a failed run never truncates or replaces it.
+#pragma once
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "renderer/film.h"
+
+namespace tessera {
+
+class OutputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct FrameMetadata {
+  double render_seconds = 0.0;
+  std::uint32_t seed = 0;
+  int threads = 0, tile_size = 0, max_bounces = 0;
+  std::uint64_t dropped_samples = 0;
+  glm::mat4 world_to_camera{1.0f}, world_to_ndc{1.0f};
+  std::string scene_path, camera_name;
+};
+
+struct ImageWriteParams {
+  bool half = false;  // EXR: 16-bit half floats instead of 32-bit floats
+  float exposure = 0.0f;  // display formats: stops applied before sRGB encoding
+  FrameMetadata metadata;  // EXR header
+};
+
+// Throws OutputError when `path` cannot be written: unknown format, missing or read-only
+// directory, a directory in the way. Call it before rendering.
+void check_output_path(const std::string& path);
+
+// Writes `image` to `path`, choosing the format by extension. Throws OutputError.
+void write_image(const std::string& path, const FrameImage& image, const ImageWriteParams& params);
+
+// sRGB-encoded 8-bit RGB of the frame with `exposure` stops, row-major, top row first.
+std::vector<std::uint8_t> to_display_rgb8(const FrameImage& image, float exposure);
+
+std::string tessera_version();
+
+}  // namespace tessera

@@ -1,0 +1,35 @@
+// Unidirectional path tracing: BSDF sampling, next-event estimation for punctual lights,
+// emission and the environment where paths end, Russian roulette.
+#pragma once
+
+#include <cstdint>
+
+#include "renderer/ray.h"
+#include "renderer/render_scene.h"
+#include "renderer/sampler.h"
+
+namespace tessera {
+
+struct PathTracerParams {
+  int max_bounces = 8;  // scattering events; 0 shows emitters and the environment only
+  int roulette_start = 3;  // bounces before Russian roulette may end a path
+};
+
+// What the camera ray saw first, for the albedo, normal and depth outputs.
+struct FirstHit {
+  bool hit = false;
+  vec3 albedo{0.0f}, normal{0.0f};
+  float distance = 0.0f;
+};
+
+struct PathCounters {
+  std::uint64_t rays = 0;  // closest-hit and shadow rays traced
+  std::uint64_t dropped = 0;  // samples dropped for a non-finite value
+};
+
+// Radiance arriving along `ray`. Never returns a non-finite value: such a sample is
+// counted in counters.dropped and returns zero.
+vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ray,
+                SampleStream& rng, FirstHit& first, PathCounters& counters);
+
+}  // namespace tessera

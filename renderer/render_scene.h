@@ -1,0 +1,41 @@
+// Everything the integrator reads while rendering, built once from a SceneDescription:
+// the Embree BVH, materials with decoded textures, lights and the environment.
+#pragma once
+
+#include <embree3/rtcore.h>
+
+#include <memory>
+
+#include "renderer/environment.h"
+#include "renderer/integrator/materials.h"
+#include "renderer/scene/scene.h"
+#include "renderer/scene_geometry.h"
+
+namespace tessera {
+
+// Owns the Embree device; errors Embree reports become exceptions at the next check.
+class EmbreeDevice {
+ public:
+  EmbreeDevice();
+  ~EmbreeDevice();
+  EmbreeDevice(const EmbreeDevice&) = delete;
+  EmbreeDevice& operator=(const EmbreeDevice&) = delete;
+  RTCDevice get() const { return device_; }
+
+ private:
+  RTCDevice device_;
+};
+
+struct RenderScene {
+  // Takes the description by value: the BVH and shading keep pointers into it.
+  RenderScene(SceneDescription scene, const EnvironmentParams& env);
+
+  SceneDescription description;
+  EmbreeDevice device;
+  Environment environment;
+  MaterialTable materials;
+  std::unique_ptr<SceneGeometry> geometry;
+  double bvh_build_seconds = 0.0;
+};
+
+}  // namespace tessera

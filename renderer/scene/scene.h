@@ -1,0 +1,142 @@
+// The renderer's own plain scene description: what a scene loader (scene_io) produces and
+// what the renderer consumes. Plain data, no behaviour, no glTF and no Embree in sight.
+// Units and conventions follow glTF 2.0: metres, right-handed, +Y up, cameras look down -Z.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace tessera {
+
+template <glm::length_t N>
+bool all_finite(const glm::vec<N, float>& v) {
+  return !glm::any(glm::isnan(v)) && !glm::any(glm::isinf(v));
+}
+
+struct Bounds3 {
+  glm::vec3 lo{std::numeric_limits<float>::infinity()};
+  glm::vec3 hi{-std::numeric_limits<float>::infinity()};
+
+  bool empty() const { return lo.x > hi.x; }
+  void extend(const glm::vec3& p) { lo = glm::min(lo, p); hi = glm::max(hi, p); }
+  void extend(const Bounds3& b) { lo = glm::min(lo, b.lo); hi = glm::max(hi, b.hi); }
+  glm::vec3 center() const { return 0.5f * (lo + hi); }
+  glm::vec3 diagonal() const { return hi - lo; }
+};
+
+// Decoded image pixels as stored in the file: 8 or 16 bits per channel (normalized
+// integers) or 32-bit float, row-major, top row first, 1 to 4 channels.
+struct Image {
+  std::string name;
+  int width = 0, height = 0, channels = 0, bits_per_channel = 8;
+  std::vector<std::uint8_t> pixels;
+};
+
+enum class WrapMode : std::uint8_t { Repeat, ClampToEdge, MirroredRepeat };
+enum class FilterMode : std::uint8_t { Linear, Nearest };
+
+struct TextureTransform {  // KHR_texture_transform; identity by default
+  glm::vec2 offset{0.0f};
+  float rotation = 0.0f;
+  glm::vec2 scale{1.0f};
+};
+
+// A reference from a material slot to an image, with how to sample it.
+struct TextureRef {
+  int image = -1;  // index into SceneDescription::images; -1 = no texture
+  int texcoord = 0;  // TEXCOORD_n set
+  WrapMode wrap_s = WrapMode::Repeat, wrap_t = WrapMode::Repeat;
+  FilterMode filter = FilterMode::Linear;
+  TextureTransform transform;
+
+  bool present() const { return image >= 0; }
+};
+
+enum class AlphaMode : std::uint8_t { Opaque, Mask, Blend };
+
+// glTF 2.0 metallic-roughness material with the extensions tessera reads.
+struct Material {
+  std::string name;
+  glm::vec4 base_color_factor{1.0f};
+  TextureRef base_color_texture;  // sRGB encoded
+  float metallic_factor = 1.0f, roughness_factor = 1.0f;
+  TextureRef metallic_roughness_texture;  // B = metallic, G = roughness, linear
+  TextureRef normal_texture;
+  float normal_scale = 1.0f;
+  glm::vec3 emissive_factor{0.0f};
+  TextureRef emissive_texture;  // sRGB encoded
+  float emissive_strength = 1.0f;  // KHR_materials_emissive_strength
+  AlphaMode alpha_mode = AlphaMode::Opaque;
+  float alpha_cutoff = 0.5f;
+  bool double_sided = false;
+};
+
+// One triangle list with one material (a glTF mesh primitive after strip/fan conversion).
+// Attribute arrays are either empty or have one entry per position.
+struct TriangleMesh {
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;
+  std::vector<glm::vec4> tangents;  // xyz tangent, w = bitangent sign
+  std::vector<glm::vec2> texcoords0, texcoords1;
+  std::vector<glm::vec4> colors;  // COLOR_0 as linear RGBA
+  std::vector<std::uint32_t> indices;  // three per triangle
+  int material = -1;  // -1 = the glTF default material
+
+  std::size_t triangle_count() const { return indices.size() / 3; }
+};
+
+// A glTF mesh: the primitives drawn together wherever a node places the mesh.
+struct Mesh {
+  std::string name;
+  std::vector<TriangleMesh> primitives;
+};
+
+// A placement of a mesh in the world. A mesh placed several times is stored once.
+struct Instance {
+  int mesh = -1;
+  glm::mat4 object_to_world{1.0f};
+  std::string node_name;
+};
+
+struct Camera {
+  enum class Projection : std::uint8_t { Perspective, Orthographic };
+  std::string name;
+  Projection projection = Projection::Perspective;
+  glm::mat4 camera_to_world{1.0f};  // rigid: looks down -Z, +Y up
+  float yfov = 0.6911f;  // perspective: vertical field of view, radians
+  float aspect_ratio = 0.0f;  // 0 = not given: use the image's
+  float xmag = 1.0f, ymag = 1.0f;  // orthographic half extents
+  float znear = 0.0f, zfar = 0.0f;  // 0 = none
+};
+
+// KHR_lights_punctual, with the specification's photometric units.
+struct PunctualLight {
+  enum class Type : std::uint8_t { Point, Spot, Directional };
+  std::string name;
+  Type type = Type::Point;
+  glm::vec3 color{1.0f};
+  float intensity = 1.0f;  // candela (point, spot) or lux (directional)
+  float range = 0.0f;  // 0 = infinite
+  float inner_cone_angle = 0.0f, outer_cone_angle = 0.7853982f;
+  glm::vec3 position{0.0f};
+  glm::vec3 direction{0.0f, 0.0f, -1.0f};  // the way the light shines, world space
+};
+
+struct SceneDescription {
+  std::string source_path;
+  std::string scene_name;
+  std::vector<Image> images;
+  std::vector<Material> materials;
+  std::vector<Mesh> meshes;
+  std::vector<Instance> instances;
+  std::vector<Camera> cameras;
+  std::vector<PunctualLight> lights;
+  std::vector<std::string> extensions_used, extensions_required;
+  Bounds3 bounds;  // world-space bounds of every instance
+};
+
+}  // namespace tessera

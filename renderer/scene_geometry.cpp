@@ -1,0 +1,202 @@
+#include "renderer/scene_geometry.h"
+
+#include <cstring>
+#include <map>
+#include <stdexcept>
+
+namespace tessera {
+namespace {
+
+// Bakes a mesh into world space. A mirroring transform reverses the winding so that the
+// front face (counter-clockwise in the file) stays the front face.
+TriangleMesh to_world_space(const TriangleMesh& src, const glm::mat4& m) {
+  TriangleMesh out = src;
+  const glm::mat3 nm = glm::transpose(glm::inverse(glm::mat3(m)));
+  for (vec3& p : out.positions) p = vec3(m * vec4(p, 1.0f));
+  for (vec3& n : out.normals) n = nm * n;
+  for (vec4& t : out.tangents) t = vec4(glm::mat3(m) * vec3(t), t.w);
+  if (glm::determinant(glm::mat3(m)) < 0.0f)
+    for (std::size_t i = 0; i + 2 < out.indices.size(); i += 3) std::swap(out.indices[i + 1], out.indices[i + 2]);
+  return out;
+}
+
+template <typename T>
+T interpolate(const std::vector<T>& values, const std::uint32_t* idx, float u, float v) {
+  return (1.0f - u - v) * values[idx[0]] + u * values[idx[1]] + v * values[idx[2]];
+}
+
+}  // namespace
+
+SceneGeometry::SceneGeometry(const SceneDescription& scene, RTCDevice device)
+    : scene_(scene), device_(device) {
+  top_ = rtcNewScene(device_);
+  rtcSetSceneFlags(top_, RTC_SCENE_FLAG_ROBUST);
+  rtcSetSceneBuildQuality(top_, RTC_BUILD_QUALITY_HIGH);
+  std::map<int, std::vector<const Instance*>> by_mesh;
+  for (const Instance& inst : scene.instances) by_mesh[inst.mesh].push_back(&inst);
+  std::size_t baked_count = 0;
+  for (const auto& [mesh, placements] : by_mesh) baked_count += placements.size() == 1 ? scene.meshes[mesh].primitives.size() : 0;
+  baked_.reserve(baked_count);  // Placement keeps pointers into baked_
+  prototypes_.assign(scene.meshes.size(), nullptr);
+  for (const auto& [mesh, placements] : by_mesh) {
+    std::uint64_t tris = 0;
+    for (const TriangleMesh& prim : scene.meshes[mesh].primitives) tris += prim.triangle_count();
+    unique_triangles_ += tris;
+    instanced_triangles_ += tris * placements.size();
+    if (placements.size() == 1) add_baked(scene.meshes[mesh], placements[0]->object_to_world);
+    else add_instanced(mesh, placements);
+  }
+  rtcCommitScene(top_);
+  if (rtcGetDeviceError(device_) != RTC_ERROR_NONE)
+    throw std::runtime_error("Embree could not build the scene's BVH");
+}
+
+SceneGeometry::~SceneGeometry() {
+  for (RTCScene s : prototypes_)
+    if (s) rtcReleaseScene(s);
+  if (top_) rtcReleaseScene(top_);
+}
+
+unsigned SceneGeometry::attach_triangles(RTCScene target, const TriangleMesh& mesh) {
+  RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+  // Embree may read 16 bytes at the last vertex: its own buffers are padded for that.
+  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+      geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.positions.size()));
+  auto* indices = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(
+      geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(std::uint32_t), mesh.triangle_count()));
+  if (!vertices || !indices) {
+    rtcReleaseGeometry(geom);
+    throw std::runtime_error("Embree could not allocate geometry buffers (out of memory?)");
+  }
+  std::memcpy(vertices, mesh.positions.data(), mesh.positions.size() * sizeof(vec3));
+  std::memcpy(indices, mesh.indices.data(), mesh.triangle_count() * 3 * sizeof(std::uint32_t));
+  rtcCommitGeometry(geom);
+  const unsigned id = rtcAttachGeometry(target, geom);
+  rtcReleaseGeometry(geom);
+  return id;
+}
+
+void SceneGeometry::add_baked(const Mesh& mesh, const glm::mat4& to_world) {
+  for (const TriangleMesh& prim : mesh.primitives) {
+    baked_.push_back(to_world_space(prim, to_world));
+    const unsigned id = attach_triangles(top_, baked_.back());
+    top_geometry_.resize(id + 1, Placement{nullptr});
+    top_is_instance_.resize(id + 1, false);
+    top_geometry_[id] = Placement{&baked_.back()};
+  }
+}
+
+void SceneGeometry::add_instanced(int mesh_index, const std::vector<const Instance*>& placements) {
+  RTCScene proto = rtcNewScene(device_);
+  rtcSetSceneFlags(proto, RTC_SCENE_FLAG_ROBUST);
+  rtcSetSceneBuildQuality(proto, RTC_BUILD_QUALITY_HIGH);
+  for (const TriangleMesh& prim : scene_.meshes[mesh_index].primitives) attach_triangles(proto, prim);
+  rtcCommitScene(proto);
+  prototypes_[mesh_index] = proto;
+  for (const Instance* inst : placements) {
+    RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
+    rtcSetGeometryInstancedScene(geom, proto);
+    rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &inst->object_to_world[0][0]);
+    rtcCommitGeometry(geom);
+    const unsigned id = rtcAttachGeometry(top_, geom);
+    rtcReleaseGeometry(geom);
+    top_instances_.resize(id + 1);
+    top_is_instance_.resize(id + 1, false);
+    top_instances_[id] = {mesh_index, inst->object_to_world};
+    top_is_instance_[id] = true;
+  }
+}
+
+bool SceneGeometry::intersect(const Ray& ray, HitRecord& hit) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rh;
+  rh.ray.org_x = ray.origin.x;
+  rh.ray.org_y = ray.origin.y;
+  rh.ray.org_z = ray.origin.z;
+  rh.ray.dir_x = ray.direction.x;
+  rh.ray.dir_y = ray.direction.y;
+  rh.ray.dir_z = ray.direction.z;
+  rh.ray.tnear = ray.tmin;
+  rh.ray.tfar = ray.tmax;
+  rh.ray.time = 0.0f;
+  rh.ray.mask = 0xffffffffu;
+  rh.ray.id = 0;
+  rh.ray.flags = 0;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(top_, &context, &rh);
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+  hit = {rh.ray.tfar, rh.hit.u, rh.hit.v, rh.hit.geomID, rh.hit.primID, rh.hit.instID[0]};
+  return true;
+}
+
+bool SceneGeometry::occluded(const vec3& origin, const vec3& direction, float tmax) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay ray;
+  ray.org_x = origin.x;
+  ray.org_y = origin.y;
+  ray.org_z = origin.z;
+  ray.dir_x = direction.x;
+  ray.dir_y = direction.y;
+  ray.dir_z = direction.z;
+  ray.tnear = 0.0f;
+  ray.tfar = tmax;
+  ray.time = 0.0f;
+  ray.mask = 0xffffffffu;
+  ray.id = 0;
+  ray.flags = 0;
+  rtcOccluded1(top_, &context, &ray);
+  return ray.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
+}
+
+const SceneGeometry::Placement& SceneGeometry::placement(const HitRecord& hit, Placement& scratch) const {
+  if (hit.instance == RTC_INVALID_GEOMETRY_ID) return top_geometry_[hit.geom];
+  const InstanceRecord& inst = top_instances_[hit.instance];
+  scratch.mesh = &scene_.meshes[inst.mesh].primitives[hit.geom];
+  scratch.to_world = inst.to_world;
+  scratch.normal_to_world = glm::transpose(glm::inverse(glm::mat3(inst.to_world)));
+  scratch.orientation = glm::determinant(glm::mat3(inst.to_world)) < 0.0f ? -1.0f : 1.0f;
+  scratch.in_world_space = false;
+  return scratch;
+}
+
+SurfaceHit SceneGeometry::surface(const Ray& ray, const HitRecord& hit) const {
+  Placement scratch{nullptr};
+  const Placement& pl = placement(hit, scratch);
+  const TriangleMesh& m = *pl.mesh;
+  const std::uint32_t* idx = &m.indices[3 * hit.prim];
+  vec3 p0 = m.positions[idx[0]], p1 = m.positions[idx[1]], p2 = m.positions[idx[2]];
+  if (!pl.in_world_space) {
+    p0 = vec3(pl.to_world * vec4(p0, 1.0f));
+    p1 = vec3(pl.to_world * vec4(p1, 1.0f));
+    p2 = vec3(pl.to_world * vec4(p2, 1.0f));
+  }
+  SurfaceHit s;
+  s.t = hit.t;
+  s.p = (1.0f - hit.u - hit.v) * p0 + hit.u * p1 + hit.v * p2;
+  vec3 ng = glm::cross(p1 - p0, p2 - p0) * pl.orientation;
+  const float len = glm::length(ng);
+  s.ng = len > 0.0f && std::isfinite(len) ? ng / len : -ray.direction;
+  s.ns = s.ng;
+  if (!m.normals.empty()) {
+    vec3 n = interpolate(m.normals, idx, hit.u, hit.v);
+    if (!pl.in_world_space) n = pl.normal_to_world * n;
+    const float nl = glm::length(n);
+    if (nl > 0.0f && std::isfinite(nl)) s.ns = n / nl;
+    if (glm::dot(s.ns, s.ng) < 0.0f) s.ng = -s.ng;  // trust the author's normals for the side
+  }
+  if (!m.tangents.empty()) {
+    vec4 t = interpolate(m.tangents, idx, hit.u, hit.v);
+    vec3 tw = pl.in_world_space ? vec3(t) : glm::mat3(pl.to_world) * vec3(t);
+    s.tangent = vec4(tw, t.w < 0.0f ? -1.0f : 1.0f);
+  }
+  if (!m.texcoords0.empty()) s.uv[0] = interpolate(m.texcoords0, idx, hit.u, hit.v);
+  if (!m.texcoords1.empty()) s.uv[1] = interpolate(m.texcoords1, idx, hit.u, hit.v);
+  if (!m.colors.empty()) s.color = interpolate(m.colors, idx, hit.u, hit.v);
+  s.material = m.material;
+  return s;
+}
+
+}  // namespace tessera

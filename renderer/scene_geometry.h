@@ -1,0 +1,78 @@
+// The scene's triangles in Embree: one BVH over the world. A mesh placed once is baked into
+// world space in the top-level BVH; a mesh placed several times is built once as its own
+// BVH and placed with Embree instances, so memory does not grow with placements.
+#pragma once
+
+#include <embree3/rtcore.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "renderer/ray.h"
+#include "renderer/scene/scene.h"
+
+namespace tessera {
+
+// Where a hit landed, as Embree reports it.
+struct HitRecord {
+  float t = 0.0f, u = 0.0f, v = 0.0f;
+  std::uint32_t geom = RTC_INVALID_GEOMETRY_ID, prim = 0, instance = RTC_INVALID_GEOMETRY_ID;
+};
+
+// Everything shading needs about a hit point, in world space.
+struct SurfaceHit {
+  vec3 p;
+  vec3 ng;  // unit geometric normal, on the side of the triangle's front face
+  vec3 ns;  // unit shading normal (interpolated NORMAL, else ng), same hemisphere as ng
+  vec4 tangent{0.0f};  // xyz world tangent, w = bitangent sign; zero when absent
+  vec2 uv[2]{vec2(0.0f), vec2(0.0f)};
+  vec4 color{1.0f};
+  int material = -1;
+  float t = 0.0f;
+};
+
+class SceneGeometry {
+ public:
+  SceneGeometry(const SceneDescription& scene, RTCDevice device);
+  ~SceneGeometry();
+  SceneGeometry(const SceneGeometry&) = delete;
+  SceneGeometry& operator=(const SceneGeometry&) = delete;
+
+  bool intersect(const Ray& ray, HitRecord& hit) const;
+  bool occluded(const vec3& origin, const vec3& direction, float tmax) const;
+  SurfaceHit surface(const Ray& ray, const HitRecord& hit) const;
+
+  std::uint64_t unique_triangles() const { return unique_triangles_; }
+  std::uint64_t instanced_triangles() const { return instanced_triangles_; }
+
+ private:
+  // One triangle mesh where it stands: world-space data, or object-space data + transform.
+  struct Placement {
+    const TriangleMesh* mesh;
+    glm::mat4 to_world{1.0f};
+    glm::mat3 normal_to_world{1.0f};
+    float orientation = 1.0f;  // -1 where the transform mirrors (negative determinant)
+    bool in_world_space = true;
+  };
+  struct InstanceRecord {  // a top-level Embree instance: a placed multi-primitive mesh
+    int mesh;
+    glm::mat4 to_world;
+  };
+
+  void add_baked(const Mesh& mesh, const glm::mat4& to_world);
+  void add_instanced(int mesh_index, const std::vector<const Instance*>& placements);
+  unsigned attach_triangles(RTCScene target, const TriangleMesh& mesh);
+  const Placement& placement(const HitRecord& hit, Placement& scratch) const;
+
+  const SceneDescription& scene_;
+  RTCDevice device_;
+  RTCScene top_ = nullptr;
+  std::vector<RTCScene> prototypes_;  // one per instanced mesh, indexed like scene_.meshes
+  std::vector<TriangleMesh> baked_;  // world-space copies of meshes placed once
+  std::vector<Placement> top_geometry_;  // by top-level geomID (baked triangles)
+  std::vector<InstanceRecord> top_instances_;  // by top-level geomID (instances)
+  std::vector<bool> top_is_instance_;
+  std::uint64_t unique_triangles_ = 0, instanced_triangles_ = 0;
+};
+
+}  // namespace tessera

@@ -1,0 +1,95 @@
+#include "renderer/texture.h"
+
+#include <array>
+#include <cstring>
+
+namespace tessera {
+
+float srgb_to_linear(float v) {
+  return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
+}
+
+namespace {
+
+float channel(const Image& img, std::size_t i) {
+  switch (img.bits_per_channel) {
+    case 8: return img.pixels[i] / 255.0f;
+    case 16: {
+      std::uint16_t v;
+      std::memcpy(&v, &img.pixels[2 * i], 2);
+      return v / 65535.0f;
+    }
+    default: {
+      float v;
+      std::memcpy(&v, &img.pixels[4 * i], 4);
+      return std::isfinite(v) ? v : 0.0f;
+    }
+  }
+}
+
+int wrap(int i, int n, WrapMode mode) {
+  switch (mode) {
+    case WrapMode::ClampToEdge: return i < 0 ? 0 : (i >= n ? n - 1 : i);
+    case WrapMode::MirroredRepeat: {
+      const int period = 2 * n;
+      int m = i % period;
+      if (m < 0) m += period;
+      return m < n ? m : period - 1 - m;
+    }
+    default: {
+      const int m = i % n;
+      return m < 0 ? m + n : m;
+    }
+  }
+}
+
+vec2 transform_uv(const TextureTransform& t, vec2 uv) {
+  if (t.rotation == 0.0f && t.scale == vec2(1.0f) && t.offset == vec2(0.0f)) return uv;
+  // KHR_texture_transform: uv' = T * R * S * uv, with R rotating counter-clockwise in UV space.
+  const float c = std::cos(t.rotation), s = std::sin(t.rotation);
+  const vec2 scaled = uv * t.scale;
+  return vec2(c * scaled.x + s * scaled.y, -s * scaled.x + c * scaled.y) + t.offset;
+}
+
+}  // namespace
+
+TextureImage make_texture_image(const Image& image, ColorEncoding encoding) {
+  TextureImage out;
+  out.width = image.width;
+  out.height = image.height;
+  out.texels.resize(static_cast<std::size_t>(image.width) * image.height);
+  // 8-bit sRGB decode through a table: 256 pow() calls instead of one per texel.
+  std::array<float, 256> table;
+  for (int i = 0; i < 256; ++i) table[i] = srgb_to_linear(i / 255.0f);
+  const int nc = image.channels;
+  for (std::size_t p = 0; p < out.texels.size(); ++p) {
+    vec4 t(0.0f, 0.0f, 0.0f, 1.0f);
+    for (int c = 0; c < nc; ++c) t[c] = channel(image, p * nc + c);
+    if (nc <= 2) t = vec4(vec3(t.r), nc == 2 ? t.g : 1.0f);  // grey (+ alpha)
+    if (encoding == ColorEncoding::SRGB)
+      for (int c = 0; c < 3; ++c)
+        t[c] = image.bits_per_channel == 8 ? table[static_cast<int>(t[c] * 255.0f + 0.5f)]
+                                           : srgb_to_linear(t[c]);
+    out.texels[p] = t;
+  }
+  return out;
+}
+
+vec4 sample_texture(const TextureImage& image, const TextureRef& ref, vec2 uv) {
+  uv = transform_uv(ref.transform, uv);
+  if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) uv = vec2(0.0f);
+  const float x = uv.x * image.width - 0.5f, y = uv.y * image.height - 0.5f;
+  auto texel = [&](int i, int j) {
+    return image.texels[static_cast<std::size_t>(wrap(j, image.height, ref.wrap_t)) * image.width +
+                        wrap(i, image.width, ref.wrap_s)];
+  };
+  // Keep coordinates in int range before flooring; wrapping makes far values equivalent.
+  const float fx = std::floor(std::fmod(x, 1 << 24)), fy = std::floor(std::fmod(y, 1 << 24));
+  const float dx = std::fmod(x, 1 << 24) - fx, dy = std::fmod(y, 1 << 24) - fy;
+  const int i = static_cast<int>(fx), j = static_cast<int>(fy);
+  if (ref.filter == FilterMode::Nearest) return texel(i + (dx >= 0.5f), j + (dy >= 0.5f));
+  return (1 - dx) * (1 - dy) * texel(i, j) + dx * (1 - dy) * texel(i + 1, j) +
+         (1 - dx) * dy * texel(i, j + 1) + dx * dy * texel(i + 1, j + 1);
+}
+
+}  // namespace tessera

@@ -1,0 +1,298 @@
+// glTF 2.0 -> SceneDescription: parsing (tinygltf), extension policy, scene and node
+// traversal, cameras and punctual lights. Meshes and materials live in their own files.
+#include "scene_io/gltf_loader.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <set>
+
+#include <fmt/format.h>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "scene_io/gltf_accessor.h"
+#include "scene_io/gltf_material.h"
+#include "scene_io/gltf_mesh.h"
+#include "scene_io/load_error.h"
+
+namespace tessera {
+
+const std::vector<std::string>& supported_gltf_extensions() {
+  static const std::vector<std::string> names = {
+      "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_mesh_quantization",
+      "KHR_texture_transform"};
+  return names;
+}
+
+bool is_supported_gltf_extension(const std::string& name) {
+  const auto& s = supported_gltf_extensions();
+  return std::find(s.begin(), s.end(), name) != s.end();
+}
+
+namespace {
+
+std::string one_line(std::string text) {
+  while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.pop_back();
+  std::replace(text.begin(), text.end(), '\n', ' ');
+  return text;
+}
+
+class Converter {
+ public:
+  Converter(const tinygltf::Model& model, const std::string& file, GltfLoadResult& result)
+      : model_(model), file_(file), out_(result.scene), warnings_(result.warnings),
+        reader_{model, file} {}
+
+  void run(const GltfLoadParams& params) {
+    check_extensions();
+    out_.materials = convert_materials(model_, file_, warnings_);
+    out_.images = convert_images(model_, file_);
+    for (int root : root_nodes(params.scene)) visit(root, glm::mat4(1.0f));
+    for (const Instance& inst : out_.instances)
+      for (const TriangleMesh& prim : out_.meshes[inst.mesh].primitives)
+        for (const glm::vec3& p : prim.positions)
+          out_.bounds.extend(glm::vec3(inst.object_to_world * glm::vec4(p, 1.0f)));
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& problem) const { throw SceneLoadError(file_, problem); }
+
+  void check_extensions() {
+    out_.extensions_used = model_.extensionsUsed;
+    out_.extensions_required = model_.extensionsRequired;
+    for (const std::string& ext : model_.extensionsRequired)
+      if (!is_supported_gltf_extension(ext))
+        fail(fmt::format("requires extension {}, which tessera does not support", ext));
+    for (const std::string& ext : model_.extensionsUsed)
+      if (!is_supported_gltf_extension(ext))
+        warnings_.push_back(fmt::format("extension {} is not supported and is ignored", ext));
+  }
+
+  std::vector<int> root_nodes(const std::string& wanted) {
+    const auto& scenes = model_.scenes;
+    if (scenes.empty()) {  // no scene: every node that is nobody's child
+      std::vector<bool> is_child(model_.nodes.size(), false);
+      for (const auto& n : model_.nodes)
+        for (int c : n.children)
+          if (c >= 0 && c < static_cast<int>(is_child.size())) is_child[c] = true;
+      std::vector<int> roots;
+      for (std::size_t i = 0; i < is_child.size(); ++i)
+        if (!is_child[i]) roots.push_back(static_cast<int>(i));
+      if (!wanted.empty()) fail(fmt::format("has no scenes, so scene '{}' cannot be chosen", wanted));
+      return roots;
+    }
+    int index = model_.defaultScene >= 0 ? model_.defaultScene : 0;
+    if (!wanted.empty()) {
+      index = -1;
+      const bool numeric = std::all_of(wanted.begin(), wanted.end(), ::isdigit);
+      for (std::size_t i = 0; i < scenes.size() && index < 0; ++i)
+        if (scenes[i].name == wanted) index = static_cast<int>(i);
+      if (index < 0 && numeric && wanted.size() < 9) index = std::stoi(wanted);
+      if (index < 0 || index >= static_cast<int>(scenes.size()))
+        fail(fmt::format("has no scene '{}' (it has {} scenes)", wanted, scenes.size()));
+    } else if (index >= static_cast<int>(scenes.size())) {
+      fail(fmt::format("default scene {} does not exist (the file has {} scenes)", index,
+                       scenes.size()));
+    }
+    out_.scene_name = scenes[index].name.empty() ? std::to_string(index) : scenes[index].name;
+    return scenes[index].nodes;
+  }
+
+  glm::mat4 local_transform(const tinygltf::Node& node, int index) const {
+    auto finite = [](const std::vector<double>& v) {
+      return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); });
+    };
+    if (!node.matrix.empty()) {
+      if (node.matrix.size() != 16 || !finite(node.matrix))
+        fail(fmt::format("node {} has an invalid matrix", index));
+      glm::dmat4 m = glm::make_mat4(node.matrix.data());  // column-major, as glTF stores it
+      return glm::mat4(m);
+    }
+    glm::dvec3 t(0.0), s(1.0);
+    glm::dquat r(1.0, 0.0, 0.0, 0.0);
+    const bool valid = (node.translation.empty() || node.translation.size() == 3) &&
+                       (node.scale.empty() || node.scale.size() == 3) &&
+                       (node.rotation.empty() || node.rotation.size() == 4) &&
+                       finite(node.translation) && finite(node.scale) && finite(node.rotation);
+    if (!valid) fail(fmt::format("node {} has an invalid translation, rotation or scale", index));
+    if (!node.translation.empty()) t = glm::make_vec3(node.translation.data());
+    if (!node.scale.empty()) s = glm::make_vec3(node.scale.data());
+    if (!node.rotation.empty())  // glTF stores x, y, z, w
+      r = glm::normalize(glm::dquat(node.rotation[3], node.rotation[0], node.rotation[1],
+                                    node.rotation[2]));
+    glm::dmat4 m = glm::mat4_cast(r);
+    m[0] *= s.x;
+    m[1] *= s.y;
+    m[2] *= s.z;
+    m[3] = glm::dvec4(t, 1.0);
+    return glm::mat4(m);
+  }
+
+  void visit(int index, const glm::mat4& parent) {
+    if (index < 0 || index >= static_cast<int>(model_.nodes.size()))
+      fail(fmt::format("refers to node {}, but the file has {} nodes", index, model_.nodes.size()));
+    if (std::find(path_.begin(), path_.end(), index) != path_.end())
+      fail(fmt::format("node {} is its own ancestor (the node hierarchy has a cycle)", index));
+    path_.push_back(index);
+    const tinygltf::Node& node = model_.nodes[index];
+    const glm::mat4 world = parent * local_transform(node, index);
+    if (node.mesh >= 0) add_instance(node, index, world);
+    if (node.camera >= 0) add_camera(node, index, world);
+    if (auto it = node.extensions.find("KHR_lights_punctual"); it != node.extensions.end())
+      add_light(it->second, index, world);
+    for (int child : node.children) visit(child, world);
+    path_.pop_back();
+  }
+
+  void add_instance(const tinygltf::Node& node, int index, const glm::mat4& world) {
+    if (node.mesh >= static_cast<int>(model_.meshes.size()))
+      fail(fmt::format("node {} refers to mesh {}, but the file has {} meshes", index, node.mesh,
+                       model_.meshes.size()));
+    auto [it, inserted] = mesh_slot_.try_emplace(node.mesh, static_cast<int>(out_.meshes.size()));
+    if (inserted) out_.meshes.push_back(convert_mesh(node.mesh));
+    if (out_.meshes[it->second].primitives.empty()) return;
+    out_.instances.push_back({it->second, world, node.name});
+  }
+
+  Mesh convert_mesh(int index) {
+    const tinygltf::Mesh& src = model_.meshes[index];
+    Mesh mesh;
+    mesh.name = src.name.empty() ? fmt::format("mesh {}", index) : src.name;
+    for (std::size_t p = 0; p < src.primitives.size(); ++p) {
+      const std::string what = fmt::format("mesh {} primitive {}", index, p);
+      auto prim = convert_primitive(reader_, src.primitives[p], what, warnings_);
+      if (!prim) continue;
+      if (prim->material >= static_cast<int>(out_.materials.size()))
+        fail(fmt::format("{} refers to material {}, but the file has {} materials", what,
+                         prim->material, out_.materials.size()));
+      if (!prim->indices.empty()) mesh.primitives.push_back(std::move(*prim));
+    }
+    return mesh;
+  }
+
+  void add_camera(const tinygltf::Node& node, int index, const glm::mat4& world) {
+    if (node.camera >= static_cast<int>(model_.cameras.size()))
+      fail(fmt::format("node {} refers to camera {}, but the file has {} cameras", index,
+                       node.camera, model_.cameras.size()));
+    const tinygltf::Camera& src = model_.cameras[node.camera];
+    Camera cam;
+    cam.name = !src.name.empty() ? src.name : !node.name.empty() ? node.name
+                                                                 : fmt::format("camera {}", node.camera);
+    // Cameras ignore the node's scale: keep an orthonormal frame and the position.
+    glm::vec3 x = glm::vec3(world[0]), y = glm::vec3(world[1]);
+    glm::vec3 z = glm::normalize(glm::cross(x, y));
+    x = glm::normalize(x);
+    y = glm::cross(z, x);
+    if (!all_finite((z)))
+      fail(fmt::format("node {} places camera {} with a degenerate transform", index, node.camera));
+    cam.camera_to_world = glm::mat4(glm::vec4(x, 0), glm::vec4(y, 0), glm::vec4(z, 0), world[3]);
+    if (src.type == "orthographic") {
+      cam.projection = Camera::Projection::Orthographic;
+      cam.xmag = static_cast<float>(std::abs(src.orthographic.xmag));
+      cam.ymag = static_cast<float>(std::abs(src.orthographic.ymag));
+      cam.znear = static_cast<float>(src.orthographic.znear);
+      cam.zfar = static_cast<float>(src.orthographic.zfar);
+      if (!(cam.xmag > 0 && cam.ymag > 0 && std::isfinite(cam.xmag) && std::isfinite(cam.ymag)))
+        fail(fmt::format("camera {} has invalid xmag/ymag", node.camera));
+    } else if (src.type == "perspective") {
+      cam.yfov = static_cast<float>(src.perspective.yfov);
+      cam.aspect_ratio = static_cast<float>(src.perspective.aspectRatio);
+      cam.znear = static_cast<float>(src.perspective.znear);
+      cam.zfar = static_cast<float>(src.perspective.zfar);
+      if (!(cam.yfov > 0 && cam.yfov < 3.1415926f))
+        fail(fmt::format("camera {} has yfov {} outside (0, pi)", node.camera, src.perspective.yfov));
+      if (!(cam.aspect_ratio >= 0 && std::isfinite(cam.aspect_ratio)))
+        fail(fmt::format("camera {} has an invalid aspectRatio", node.camera));
+    } else {
+      fail(fmt::format("camera {} has unknown type '{}'", node.camera, src.type));
+    }
+    out_.cameras.push_back(cam);
+  }
+
+  void add_light(const tinygltf::Value& ext, int index, const glm::mat4& world) {
+    const int light = ext.Has("light") ? ext.Get("light").GetNumberAsInt() : -1;
+    if (light < 0 || light >= static_cast<int>(model_.lights.size()))
+      fail(fmt::format("node {} refers to light {}, but the file has {} lights", index, light,
+                       model_.lights.size()));
+    const tinygltf::Light& src = model_.lights[light];
+    PunctualLight l;
+    l.name = src.name.empty() ? fmt::format("light {}", light) : src.name;
+    if (src.type == "point") l.type = PunctualLight::Type::Point;
+    else if (src.type == "spot") l.type = PunctualLight::Type::Spot;
+    else if (src.type == "directional") l.type = PunctualLight::Type::Directional;
+    else fail(fmt::format("light {} has unknown type '{}'", light, src.type));
+    if (src.color.size() == 3) l.color = {src.color[0], src.color[1], src.color[2]};
+    l.intensity = static_cast<float>(src.intensity);
+    l.range = static_cast<float>(src.range);
+    l.inner_cone_angle = static_cast<float>(src.spot.innerConeAngle);
+    l.outer_cone_angle = static_cast<float>(src.spot.outerConeAngle);
+    l.position = glm::vec3(world[3]);
+    l.direction = glm::normalize(glm::vec3(world * glm::vec4(0, 0, -1, 0)));
+    const bool finite = all_finite((l.color)) && std::isfinite(l.intensity) &&
+                        all_finite((l.direction)) && l.intensity >= 0;
+    if (!finite) fail(fmt::format("light {} has an invalid color, intensity or direction", light));
+    out_.lights.push_back(l);
+  }
+
+  const tinygltf::Model& model_;
+  const std::string& file_;
+  SceneDescription& out_;
+  std::vector<std::string>& warnings_;
+  AccessorReader reader_;
+  std::map<int, int> mesh_slot_;  // glTF mesh index -> index in out_.meshes
+  std::vector<int> path_;  // nodes from the root to the current one
+};
+
+std::string directory_of(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  return slash == std::string::npos ? std::string(".") : path.substr(0, slash);
+}
+
+void deduplicate(std::vector<std::string>& warnings) {
+  std::set<std::string> seen;
+  std::vector<std::string> unique;
+  for (auto& w : warnings)
+    if (seen.insert(w).second) unique.push_back(std::move(w));
+  warnings = std::move(unique);
+}
+
+}  // namespace
+
+GltfLoadResult load_gltf_from_memory(const std::vector<std::uint8_t>& bytes,
+                                     const std::string& display_name, const std::string& base_dir,
+                                     const GltfLoadParams& params) {
+  if (bytes.empty()) throw SceneLoadError(display_name, "file is empty");
+  tinygltf::TinyGLTF parser;
+  tinygltf::Model model;
+  std::string err, warn;
+  const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+  const bool ok =
+      binary ? parser.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(),
+                                           static_cast<unsigned>(bytes.size()), base_dir)
+             : parser.LoadASCIIFromString(&model, &err, &warn,
+                                          reinterpret_cast<const char*>(bytes.data()),
+                                          static_cast<unsigned>(bytes.size()), base_dir);
+  if (!ok) throw SceneLoadError(display_name, one_line(err.empty() ? "could not be parsed" : err));
+  if (model.asset.version.rfind("2.", 0) != 0)
+    throw SceneLoadError(display_name, fmt::format("is glTF version '{}'; tessera reads 2.x",
+                                                   model.asset.version));
+  GltfLoadResult result;
+  result.scene.source_path = display_name;
+  Converter(model, display_name, result).run(params);
+  deduplicate(result.warnings);
+  return result;
+}
+
+GltfLoadResult load_gltf(const std::string& path, const GltfLoadParams& params) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw SceneLoadError(path, std::string("cannot be opened: ") + std::strerror(errno));
+  std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)),
+                                  std::istreambuf_iterator<char>());
+  if (in.bad()) throw SceneLoadError(path, "could not be read");
+  return load_gltf_from_memory(bytes, path, directory_of(path), params);
+}
+
+}  // namespace tessera

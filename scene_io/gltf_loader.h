@@ -1,0 +1,35 @@
+// Loads a glTF 2.0 file (.gltf with external or data-URI resources, or .glb) into the
+// renderer's plain SceneDescription. Throws SceneLoadError naming the file and the problem.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "renderer/scene/scene.h"
+
+namespace tessera {
+
+struct GltfLoadParams {
+  std::string scene;  // index or name; empty = the file's default scene, else scene 0
+};
+
+struct GltfLoadResult {
+  SceneDescription scene;
+  std::vector<std::string> warnings;  // each once, already prefixed with nothing
+};
+
+GltfLoadResult load_gltf(const std::string& path, const GltfLoadParams& params = {});
+
+// The same loader over bytes in memory (.glb when they start with "glTF", else JSON).
+// External resources are looked up relative to base_dir. Used by the fuzzer and tests.
+GltfLoadResult load_gltf_from_memory(const std::vector<std::uint8_t>& bytes,
+                                     const std::string& display_name,
+                                     const std::string& base_dir,
+                                     const GltfLoadParams& params = {});
+
+// Extensions tessera implements; anything else in extensionsRequired is refused.
+const std::vector<std::string>& supported_gltf_extensions();
+bool is_supported_gltf_extension(const std::string& name);
+
+}  // namespace tessera

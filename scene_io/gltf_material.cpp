@@ -1,0 +1,140 @@
+// glTF materials, textures, samplers and decoded images -> plain descriptions.
+#include "scene_io/gltf_material.h"
+
+#include <fmt/format.h>
+
+#include "scene_io/load_error.h"
+
+namespace tessera {
+namespace {
+
+WrapMode wrap_mode(int gl) {
+  switch (gl) {
+    case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return WrapMode::ClampToEdge;
+    case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT: return WrapMode::MirroredRepeat;
+    default: return WrapMode::Repeat;
+  }
+}
+
+glm::vec2 vec2_of(const tinygltf::Value& v, glm::vec2 fallback) {
+  if (!v.IsArray() || v.ArrayLen() != 2) return fallback;
+  return {static_cast<float>(v.Get(0).GetNumberAsDouble()),
+          static_cast<float>(v.Get(1).GetNumberAsDouble())};
+}
+
+double number_of(const tinygltf::Value& object, const char* key, double fallback) {
+  if (!object.IsObject() || !object.Has(key) || !object.Get(key).IsNumber()) return fallback;
+  return object.Get(key).GetNumberAsDouble();
+}
+
+TextureRef texture_ref(const tinygltf::Model& model, const std::string& file, int index,
+                       int texcoord, const tinygltf::ExtensionMap& extensions,
+                       const std::string& what, std::vector<std::string>& warnings) {
+  TextureRef ref;
+  if (index < 0) return ref;
+  if (index >= static_cast<int>(model.textures.size()))
+    throw SceneLoadError(file, fmt::format("{} refers to texture {}, but the file has {} textures",
+                                           what, index, model.textures.size()));
+  const tinygltf::Texture& tex = model.textures[index];
+  if (tex.source < 0) {
+    warnings.push_back(fmt::format("texture {} has no image tessera can decode; ignored", index));
+    return ref;
+  }
+  if (tex.source >= static_cast<int>(model.images.size()))
+    throw SceneLoadError(file, fmt::format("texture {} refers to image {}, but the file has {} images",
+                                           index, tex.source, model.images.size()));
+  ref.image = tex.source;
+  ref.texcoord = texcoord;
+  if (tex.sampler >= static_cast<int>(model.samplers.size()))
+    throw SceneLoadError(file, fmt::format("texture {} refers to sampler {}, but the file has {} samplers",
+                                           index, tex.sampler, model.samplers.size()));
+  if (tex.sampler >= 0) {
+    const tinygltf::Sampler& s = model.samplers[tex.sampler];
+    ref.wrap_s = wrap_mode(s.wrapS);
+    ref.wrap_t = wrap_mode(s.wrapT);
+    if (s.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST) ref.filter = FilterMode::Nearest;
+  }
+  if (auto it = extensions.find("KHR_texture_transform"); it != extensions.end()) {
+    const tinygltf::Value& t = it->second;
+    ref.transform.offset = vec2_of(t.Has("offset") ? t.Get("offset") : tinygltf::Value(), {0, 0});
+    ref.transform.scale = vec2_of(t.Has("scale") ? t.Get("scale") : tinygltf::Value(), {1, 1});
+    ref.transform.rotation = static_cast<float>(number_of(t, "rotation", 0.0));
+    ref.texcoord = static_cast<int>(number_of(t, "texCoord", texcoord));
+  }
+  if (ref.texcoord < 0 || ref.texcoord > 1) {
+    warnings.push_back(fmt::format("{} uses TEXCOORD_{}; tessera reads sets 0 and 1, using 0",
+                                   what, ref.texcoord));
+    ref.texcoord = 0;
+  }
+  return ref;
+}
+
+}  // namespace
+
+std::vector<Material> convert_materials(const tinygltf::Model& model, const std::string& file,
+                                        std::vector<std::string>& warnings) {
+  std::vector<Material> out;
+  for (std::size_t i = 0; i < model.materials.size(); ++i) {
+    const tinygltf::Material& m = model.materials[i];
+    const std::string what = fmt::format("material {}", i);
+    auto ref = [&](const tinygltf::TextureInfo& t, const char* slot) {
+      return texture_ref(model, file, t.index, t.texCoord, t.extensions, what + " " + slot, warnings);
+    };
+    Material mat;
+    mat.name = m.name;
+    const auto& pbr = m.pbrMetallicRoughness;
+    if (pbr.baseColorFactor.size() == 4)
+      mat.base_color_factor = {pbr.baseColorFactor[0], pbr.baseColorFactor[1],
+                               pbr.baseColorFactor[2], pbr.baseColorFactor[3]};
+    mat.base_color_texture = ref(pbr.baseColorTexture, "baseColorTexture");
+    mat.metallic_factor = static_cast<float>(pbr.metallicFactor);
+    mat.roughness_factor = static_cast<float>(pbr.roughnessFactor);
+    mat.metallic_roughness_texture = ref(pbr.metallicRoughnessTexture, "metallicRoughnessTexture");
+    mat.normal_texture = texture_ref(model, file, m.normalTexture.index, m.normalTexture.texCoord,
+                                     m.normalTexture.extensions, what + " normalTexture", warnings);
+    mat.normal_scale = static_cast<float>(m.normalTexture.scale);
+    if (m.emissiveFactor.size() == 3)
+      mat.emissive_factor = {m.emissiveFactor[0], m.emissiveFactor[1], m.emissiveFactor[2]};
+    mat.emissive_texture = ref(m.emissiveTexture, "emissiveTexture");
+    if (auto it = m.extensions.find("KHR_materials_emissive_strength"); it != m.extensions.end())
+      mat.emissive_strength = static_cast<float>(number_of(it->second, "emissiveStrength", 1.0));
+    mat.alpha_mode = m.alphaMode == "MASK"    ? AlphaMode::Mask
+                     : m.alphaMode == "BLEND" ? AlphaMode::Blend
+                                              : AlphaMode::Opaque;
+    mat.alpha_cutoff = static_cast<float>(m.alphaCutoff);
+    mat.double_sided = m.doubleSided;
+    const bool finite = all_finite((mat.base_color_factor)) &&
+                        all_finite((mat.emissive_factor)) &&
+                        std::isfinite(mat.emissive_strength) && std::isfinite(mat.metallic_factor) &&
+                        std::isfinite(mat.roughness_factor);
+    if (!finite) throw SceneLoadError(file, what + " has a non-finite factor");
+    out.push_back(std::move(mat));
+  }
+  return out;
+}
+
+std::vector<Image> convert_images(const tinygltf::Model& model, const std::string& file) {
+  std::vector<Image> out;
+  for (std::size_t i = 0; i < model.images.size(); ++i) {
+    const tinygltf::Image& src = model.images[i];
+    Image img;
+    img.name = src.name.empty() ? src.uri.substr(0, 64) : src.name;
+    img.width = src.width;
+    img.height = src.height;
+    img.channels = src.component;
+    img.bits_per_channel = src.bits;
+    const bool valid_shape = src.width > 0 && src.height > 0 && src.component >= 1 &&
+                             src.component <= 4 &&
+                             (src.bits == 8 || src.bits == 16 || src.bits == 32);
+    const std::size_t expected = valid_shape ? static_cast<std::size_t>(src.width) * src.height *
+                                                   src.component * (src.bits / 8)
+                                             : 0;
+    if (!valid_shape || src.image.size() != expected)
+      throw SceneLoadError(file, fmt::format("image {} ('{}') could not be decoded", i, img.name));
+    img.pixels.assign(src.image.begin(), src.image.end());
+    out.push_back(std::move(img));
+  }
+  return out;
+}
+
+}  // namespace tessera

@@ -1,0 +1,113 @@
+// glTF mesh primitives -> TriangleMesh: attributes, index validation, strips and fans.
+#include "scene_io/gltf_mesh.h"
+
+#include <fmt/format.h>
+
+#include "scene_io/load_error.h"
+
+namespace tessera {
+namespace {
+
+template <typename Vec, int N>
+std::vector<Vec> to_vectors(const std::vector<float>& flat) {
+  std::vector<Vec> out(flat.size() / N);
+  for (std::size_t i = 0; i < out.size(); ++i)
+    for (int c = 0; c < N; ++c) out[i][c] = flat[i * N + c];
+  return out;
+}
+
+// Triangle list from the primitive's (possibly implicit) indices and topology mode.
+std::vector<std::uint32_t> triangulate(const std::vector<std::uint32_t>& idx, int mode,
+                                       const std::string& what, std::vector<std::string>& warnings) {
+  std::vector<std::uint32_t> tris;
+  if (mode == TINYGLTF_MODE_TRIANGLES) {
+    const std::size_t usable = idx.size() - idx.size() % 3;
+    if (usable != idx.size())
+      warnings.push_back(fmt::format("{}: {} indices is not a multiple of 3; the last {} ignored",
+                                     what, idx.size(), idx.size() - usable));
+    tris.assign(idx.begin(), idx.begin() + usable);
+  } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+    // Specification: triangle i = {v_i, v_{i+(1+i%2)}, v_{i+(2-i%2)}}, keeping the winding.
+    for (std::size_t i = 0; i + 2 < idx.size(); ++i) {
+      tris.push_back(idx[i]);
+      tris.push_back(idx[i + 1 + i % 2]);
+      tris.push_back(idx[i + 2 - i % 2]);
+    }
+  } else {  // TRIANGLE_FAN: triangle i = {v_{i+1}, v_{i+2}, v_0}
+    for (std::size_t i = 0; i + 2 < idx.size(); ++i) {
+      tris.push_back(idx[i + 1]);
+      tris.push_back(idx[i + 2]);
+      tris.push_back(idx[0]);
+    }
+  }
+  return tris;
+}
+
+}  // namespace
+
+std::optional<TriangleMesh> convert_primitive(const AccessorReader& reader,
+                                              const tinygltf::Primitive& prim,
+                                              const std::string& what,
+                                              std::vector<std::string>& warnings) {
+  const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+  if (mode < TINYGLTF_MODE_TRIANGLES) {
+    warnings.push_back("points and lines are not rendered; such primitives were skipped");
+    return std::nullopt;
+  }
+  if (mode > TINYGLTF_MODE_TRIANGLE_FAN)
+    throw SceneLoadError(reader.file, fmt::format("{} has unknown mode {}", what, mode));
+
+  auto attribute = [&](const char* name) {
+    auto it = prim.attributes.find(name);
+    return it == prim.attributes.end() ? -1 : it->second;
+  };
+  const int position = attribute("POSITION");
+  if (position < 0)
+    throw SceneLoadError(reader.file, what + " has no POSITION attribute");
+
+  TriangleMesh mesh;
+  mesh.positions = to_vectors<glm::vec3, 3>(reader.floats(position, 3, "POSITION of " + what));
+  const std::size_t n = mesh.positions.size();
+  auto sized = [&](auto&& values, const char* name) {
+    if (values.size() != n)
+      throw SceneLoadError(reader.file, fmt::format("{}: {} has {} elements but POSITION has {}",
+                                                    what, name, values.size(), n));
+    return std::move(values);
+  };
+  if (int a = attribute("NORMAL"); a >= 0)
+    mesh.normals = sized(to_vectors<glm::vec3, 3>(reader.floats(a, 3, "NORMAL of " + what)), "NORMAL");
+  if (int a = attribute("TANGENT"); a >= 0)
+    mesh.tangents = sized(to_vectors<glm::vec4, 4>(reader.floats(a, 4, "TANGENT of " + what)), "TANGENT");
+  if (int a = attribute("TEXCOORD_0"); a >= 0)
+    mesh.texcoords0 = sized(to_vectors<glm::vec2, 2>(reader.floats(a, 2, "TEXCOORD_0 of " + what)), "TEXCOORD_0");
+  if (int a = attribute("TEXCOORD_1"); a >= 0)
+    mesh.texcoords1 = sized(to_vectors<glm::vec2, 2>(reader.floats(a, 2, "TEXCOORD_1 of " + what)), "TEXCOORD_1");
+  if (int a = attribute("COLOR_0"); a >= 0) {
+    const int components = gltf_component_count(reader.accessor(a, "COLOR_0 of " + what).type);
+    if (components == 3) {
+      for (const glm::vec3& c : to_vectors<glm::vec3, 3>(reader.floats(a, 3, "COLOR_0 of " + what)))
+        mesh.colors.emplace_back(c, 1.0f);
+    } else {
+      mesh.colors = to_vectors<glm::vec4, 4>(reader.floats(a, 4, "COLOR_0 of " + what));
+    }
+    sized(std::vector<glm::vec4>(mesh.colors), "COLOR_0");
+  }
+
+  std::vector<std::uint32_t> idx;
+  if (prim.indices >= 0) {
+    idx = reader.indices(prim.indices, "indices of " + what);
+    for (std::size_t i = 0; i < idx.size(); ++i)
+      if (idx[i] >= n)
+        throw SceneLoadError(reader.file, fmt::format("{}: index {} at position {} is out of "
+                                                      "range (the primitive has {} vertices)",
+                                                      what, idx[i], i, n));
+  } else {
+    idx.resize(n);
+    for (std::size_t i = 0; i < n; ++i) idx[i] = static_cast<std::uint32_t>(i);
+  }
+  mesh.indices = triangulate(idx, mode, what, warnings);
+  mesh.material = prim.material;
+  return mesh;
+}
+
+}  // namespace tessera
