@@ -1,0 +1,52 @@
+#include "tests/test_support.h"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace tessera::test {
+
+namespace fs = std::filesystem;
+
+std::string source_dir() { return TESSERA_SOURCE_DIR; }
+std::string scene_path(const std::string& relative) { return source_dir() + "/scenes/" + relative; }
+std::string data_path(const std::string& relative) { return source_dir() + "/tests/data/" + relative; }
+std::string tessera_exe() { return TESSERA_EXE; }
+
+std::string make_temp_dir(const std::string& name) {
+  const fs::path dir = fs::current_path() / "tmp" / (name + "-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir.string();
+}
+
+namespace {
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+}  // namespace
+
+CommandResult run_command(const std::string& command_line) {
+  static int counter = 0;
+  const fs::path base = fs::current_path() / "tmp";
+  fs::create_directories(base);
+  const std::string stem = (base / ("cmd-" + std::to_string(::getpid()) + "-" + std::to_string(counter++))).string();
+  const std::string full = "(" + command_line + ") >" + stem + ".out 2>" + stem + ".err </dev/null";
+  const int status = std::system(full.c_str());
+  CommandResult r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = slurp(stem + ".out");
+  r.err = slurp(stem + ".err");
+  fs::remove(stem + ".out");
+  fs::remove(stem + ".err");
+  return r;
+}
+
+}  // namespace tessera::test

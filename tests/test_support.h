@@ -1,0 +1,23 @@
+// Shared helpers for the tests: paths, temporary directories, running the program.
+#pragma once
+
+#include <string>
+
+namespace tessera::test {
+
+std::string source_dir();
+std::string scene_path(const std::string& relative);  // under scenes/
+std::string data_path(const std::string& relative);  // under tests/data/
+std::string tessera_exe();
+
+// A fresh empty directory for one test, removed by nobody (the build tree holds it).
+std::string make_temp_dir(const std::string& name);
+
+struct CommandResult {
+  int exit_code = -1;
+  std::string out, err;
+};
+// Runs a shell command line, capturing standard output and standard error.
+CommandResult run_command(const std::string& command_line);
+
+}  // namespace tessera::test
