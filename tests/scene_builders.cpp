@@ -1,5 +1,6 @@
 #include "tests/scene_builders.h"
 
+#include <algorithm>
 #include <map>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -17,7 +18,7 @@ TriangleMesh make_quad(glm::vec3 center, glm::vec3 u, glm::vec3 v, int material)
   return m;
 }
 
-TriangleMesh make_sphere(glm::vec3 center, float radius, int subdivisions, int material, bool inward) {
+TriangleMesh make_sphere(glm::vec3 center, float radius, int subdivisions, int material, bool inward, bool smooth) {
   const float t = (1.0f + std::sqrt(5.0f)) / 2.0f;
   std::vector<glm::vec3> v = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
                               {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
@@ -45,7 +46,7 @@ TriangleMesh make_sphere(glm::vec3 center, float radius, int subdivisions, int m
   TriangleMesh m;
   for (const auto& p : v) {
     m.positions.push_back(center + radius * p);
-    m.normals.push_back(inward ? -p : p);
+    if (smooth) m.normals.push_back(inward ? -p : p);
   }
   if (inward)
     for (std::size_t i = 0; i < f.size(); i += 3) std::swap(f[i + 1], f[i + 2]);

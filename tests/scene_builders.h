@@ -8,9 +8,11 @@ namespace tessera::test {
 // A quad centred at `center` spanning +-u and +-v; its front face looks along cross(u, v).
 TriangleMesh make_quad(glm::vec3 center, glm::vec3 u, glm::vec3 v, int material);
 
-// A geodesic sphere (subdivided icosahedron) with smooth normals; `inward` turns its
-// front faces and normals towards the centre.
-TriangleMesh make_sphere(glm::vec3 center, float radius, int subdivisions, int material, bool inward = false);
+// A geodesic sphere (subdivided icosahedron); `inward` turns its front faces and normals
+// towards the centre. Flat (no NORMAL) unless `smooth`: with interpolated normals some
+// cosine-weighted directions fall below the true faces, and the closed forms no longer hold.
+TriangleMesh make_sphere(glm::vec3 center, float radius, int subdivisions, int material, bool inward = false,
+                         bool smooth = false);
 
 int add_material(SceneDescription& scene, const Material& material);
 // Adds the mesh as its own glTF-like mesh placed once (or at each transform given).

@@ -45,7 +45,9 @@ vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ra
       s.ng = -s.ng;
       s.ns = -s.ns;
     }
-    if (glm::dot(s.ns, s.ng) <= 0.0f) s.ns = s.ng;
+    // Interpolated normals can face away from the viewer near silhouettes: there the
+    // flat normal is the only consistent choice.
+    if (glm::dot(s.ns, s.ng) <= 0.0f || glm::dot(s.ns, ray.direction) >= 0.0f) s.ns = s.ng;
     if (bounce == 0) first = {true, sp.base_color, s.ns, hit.t};
     if (bounce >= params.max_bounces) break;
 

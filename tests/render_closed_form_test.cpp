@@ -1,0 +1,124 @@
+// Whole renders of analytic scenes whose exact images are known in closed form.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "renderer/render.h"
+#include "tests/scene_builders.h"
+
+namespace tessera {
+namespace {
+
+using test::add_material;
+using test::add_mesh;
+
+RenderResult render(SceneDescription scene, const Camera& cam, RenderSettings s, vec3 background,
+                    CameraParams lens = {}) {
+  EnvironmentParams env;
+  env.background = background;
+  RenderScene rs(std::move(scene), env);
+  return render_frame(rs, make_camera(cam, s.width, s.height, lens), s);
+}
+
+struct PixelStats {
+  double mean = 0.0, variance = 0.0;  // over pixels, of the red channel
+};
+
+PixelStats stats_of(const FrameImage& img, int channel = 0) {
+  const std::size_t n = img.rgb.size() / 3;
+  PixelStats st;
+  for (std::size_t i = 0; i < n; ++i) st.mean += img.rgb[3 * i + channel];
+  st.mean /= n;
+  for (std::size_t i = 0; i < n; ++i) st.variance += std::pow(img.rgb[3 * i + channel] - st.mean, 2);
+  st.variance /= (n - 1);
+  return st;
+}
+
+// White furnace: a diffuse sphere of albedo 1 under a uniform environment of radiance 1.
+// Every path sees the environment with throughput exactly 1 (cosine-weighted sampling of
+// a Lambertian BSDF has weight = albedo), so every pixel, sphere or background, is 1;
+// only float rounding of the throughput remains.
+TEST(RenderClosedForm, WhiteFurnaceSphereIsOneEverywhere) {
+  SceneDescription scene;
+  const int white = add_material(scene, test::diffuse(vec3(1.0f)));
+  add_mesh(scene, test::make_sphere(vec3(0.0f), 1.0f, 4, white));
+  RenderSettings s;
+  s.width = s.height = 48;
+  s.spp = 16;
+  s.max_bounces = 16;
+  const RenderResult r = render(scene, test::look_at({0, 0, 4}, {0, 0, 0}, 40.0f), s, vec3(1.0f));
+  for (float v : r.image.rgb) ASSERT_NEAR(v, 1.0f, 1e-5f);
+  EXPECT_EQ(r.stats.dropped_samples, 0u);
+}
+
+// Inside a closed sphere whose wall has albedo a and emits Le (front faces inward), every
+// path gathers Le at each of its vertices, weighted by a^k after k bounces:
+// L = Le (1 - a^(B+1)) / (1 - a) with at most B bounces. Below the Russian-roulette start
+// the estimator has zero variance; beyond it the mean must still match (unbiasedness).
+SceneDescription glowing_enclosure(float albedo, float le) {
+  SceneDescription scene;
+  Material wall = test::diffuse(vec3(albedo));
+  wall.emissive_factor = vec3(le);
+  add_mesh(scene, test::make_sphere(vec3(0.0f), 5.0f, 3, add_material(scene, wall), /*inward=*/true));
+  return scene;
+}
+
+TEST(RenderClosedForm, EnclosureWithTwoBouncesIsExact) {
+  RenderSettings s;
+  s.width = s.height = 32;
+  s.spp = 4;
+  s.max_bounces = 2;
+  const RenderResult r = render(glowing_enclosure(0.5f, 1.0f), test::look_at({0, 0, 0}, {0, 0, -1}, 60.0f), s, vec3(0));
+  for (float v : r.image.rgb) ASSERT_NEAR(v, 1.75f, 1e-5f);  // 1 + 0.5 + 0.25
+}
+
+TEST(RenderClosedForm, EnclosureWithRussianRouletteIsUnbiased) {
+  RenderSettings s;
+  s.width = s.height = 64;
+  s.spp = 16;
+  s.max_bounces = 64;
+  const float a = 0.8f;
+  const RenderResult r = render(glowing_enclosure(a, 1.0f), test::look_at({0, 0, 0}, {0, 0, -1}, 60.0f), s, vec3(0));
+  const double expected = (1.0 - std::pow(a, 65)) / (1.0 - a);  // 5 - 5 * 0.8^65
+  const PixelStats st = stats_of(r.image);
+  // The pixels are independent estimates: the image mean has standard error sqrt(var / n).
+  const double stderr_mean = std::sqrt(st.variance / (s.width * s.height));
+  EXPECT_GT(st.variance, 0.0);  // roulette really ran
+  EXPECT_NEAR(st.mean, expected, 5.0 * stderr_mean);
+}
+
+// An emissive quad filling the view, seen head-on: every pixel is its radiance, exactly,
+// whatever the bounce limit (black diffuse surface, black background).
+TEST(RenderClosedForm, EmissiveQuadHeadOnRendersItsRadiance) {
+  SceneDescription scene;
+  Material m = test::emitter(vec3(0.25f, 0.5f, 0.75f));
+  m.emissive_strength = 4.0f;
+  add_mesh(scene, test::make_quad({0, 0, 0}, {10, 0, 0}, {0, 10, 0}, add_material(scene, m)));
+  RenderSettings s;
+  s.width = s.height = 16;
+  s.spp = 4;
+  const RenderResult r = render(scene, test::look_at({0, 0, 3}, {0, 0, 0}, 30.0f), s, vec3(0));
+  for (std::size_t i = 0; i < r.image.rgb.size(); i += 3) {
+    ASSERT_FLOAT_EQ(r.image.rgb[i + 0], 1.0f);
+    ASSERT_FLOAT_EQ(r.image.rgb[i + 1], 2.0f);
+    ASSERT_FLOAT_EQ(r.image.rgb[i + 2], 3.0f);
+  }
+}
+
+// The same quad seen from behind: single-sided emission shows black, double-sided shows it.
+TEST(RenderClosedForm, SingleSidedEmitterIsDarkFromBehind) {
+  for (bool double_sided : {false, true}) {
+    SceneDescription scene;
+    Material m = test::emitter(vec3(1.0f));
+    m.double_sided = double_sided;
+    add_mesh(scene, test::make_quad({0, 0, 0}, {10, 0, 0}, {0, 10, 0}, add_material(scene, m)));
+    RenderSettings s;
+    s.width = s.height = 8;
+    s.spp = 1;
+    const RenderResult r = render(scene, test::look_at({0, 0, -3}, {0, 0, 0}, 30.0f), s, vec3(0));
+    for (float v : r.image.rgb) ASSERT_EQ(v, double_sided ? 1.0f : 0.0f);
+  }
+}
+
+}  // namespace
+}  // namespace tessera
