@@ -80,7 +80,7 @@ LIGHT_RADIANCE = (17.0, 12.0, 4.0)  # W/(m^2 sr), RGB, as in the common pbrt/Mit
 def to_gltf(p):
     """Cornell millimetres (camera looking +z) -> glTF metres (camera looking -z)."""
     x, y, z = p
-    return ((CAMERA_POSITION[0] - x) / 1000.0, y / 1000.0, -z / 1000.0)
+    return ((CAMERA_POSITION[0] - x) / 1000.0 + 0.0, y / 1000.0 + 0.0, -z / 1000.0 + 0.0)  # no -0.0
 
 
 def sub(a, b):
@@ -97,7 +97,7 @@ def dot(a, b):
 
 def normalize(a):
     length = math.sqrt(dot(a, a))
-    return (a[0] / length, a[1] / length, a[2] / length)
+    return (a[0] / length + 0.0, a[1] / length + 0.0, a[2] / length + 0.0)  # + 0.0: no -0.0
 
 
 def centroid(points):
