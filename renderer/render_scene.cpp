@@ -17,6 +17,7 @@ RenderScene::RenderScene(SceneDescription scene, const EnvironmentParams& env)
   const auto start = std::chrono::steady_clock::now();
   geometry = std::make_unique<SceneGeometry>(description, device.get());
   bvh_build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  area_lights = std::make_unique<AreaLights>(description, *geometry, materials);
 }
 
 }  // namespace tessera

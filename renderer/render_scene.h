@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "renderer/environment.h"
+#include "renderer/integrator/area_lights.h"
 #include "renderer/integrator/materials.h"
 #include "renderer/scene/scene.h"
 #include "renderer/scene_geometry.h"
@@ -35,6 +36,7 @@ struct RenderScene {
   Environment environment;
   MaterialTable materials;
   std::unique_ptr<SceneGeometry> geometry;
+  std::unique_ptr<AreaLights> area_lights;  // emissive triangles
   double bvh_build_seconds = 0.0;
 };
 

@@ -107,6 +107,20 @@ void SceneGeometry::add_instanced(int mesh_index, const std::vector<const Instan
   }
 }
 
+std::vector<SceneGeometry::PlacedPrimitive> SceneGeometry::placed_primitives() const {
+  std::vector<PlacedPrimitive> out;
+  for (std::uint32_t id = 0; id < top_is_instance_.size(); ++id) {
+    if (!top_is_instance_[id]) {
+      if (top_geometry_[id].mesh) out.push_back({id, RTC_INVALID_GEOMETRY_ID, top_geometry_[id].mesh, glm::mat4(1.0f)});
+      continue;
+    }
+    const InstanceRecord& inst = top_instances_[id];
+    const auto& prims = scene_.meshes[inst.mesh].primitives;
+    for (std::uint32_t g = 0; g < prims.size(); ++g) out.push_back({g, id, &prims[g], inst.to_world});
+  }
+  return out;
+}
+
 bool SceneGeometry::intersect(const Ray& ray, HitRecord& hit) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);

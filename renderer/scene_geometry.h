@@ -42,6 +42,14 @@ class SceneGeometry {
   bool occluded(const vec3& origin, const vec3& direction, float tmax) const;
   SurfaceHit surface(const Ray& ray, const HitRecord& hit) const;
 
+  // Every triangle list where it stands, with the ids a hit on it carries.
+  struct PlacedPrimitive {
+    std::uint32_t geom, instance;  // as in HitRecord
+    const TriangleMesh* mesh;
+    glm::mat4 to_world;  // identity for meshes baked into world space
+  };
+  std::vector<PlacedPrimitive> placed_primitives() const;
+
   std::uint64_t unique_triangles() const { return unique_triangles_; }
   std::uint64_t instanced_triangles() const { return instanced_triangles_; }
 

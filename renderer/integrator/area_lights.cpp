@@ -1,0 +1,98 @@
+#include "renderer/integrator/area_lights.h"
+
+#include <algorithm>
+
+namespace tessera {
+namespace {
+
+// Upper bound of the radiance a material can emit, for choosing lights by power.
+float emitted_luminance(const Material& m) {
+  return luminance(m.emissive_factor) * m.emissive_strength;
+}
+
+}  // namespace
+
+AreaLights::AreaLights(const SceneDescription& scene, const SceneGeometry& geometry, const MaterialTable& materials)
+    : geometry_(geometry), materials_(materials) {
+  std::vector<double> power;
+  for (const SceneGeometry::PlacedPrimitive& pp : geometry.placed_primitives()) {
+    const Material& m = materials.material(pp.mesh->material);
+    const float le = emitted_luminance(m);
+    if (!(le > 0.0f)) continue;
+    first_[list_key(pp.geom, pp.instance)] = static_cast<std::uint32_t>(triangles_.size());
+    const auto& idx = pp.mesh->indices;
+    for (std::uint32_t t = 0; 3 * t + 2 < idx.size(); ++t) {
+      const vec3 p0 = vec3(pp.to_world * vec4(pp.mesh->positions[idx[3 * t]], 1.0f));
+      const vec3 p1 = vec3(pp.to_world * vec4(pp.mesh->positions[idx[3 * t + 1]], 1.0f));
+      const vec3 p2 = vec3(pp.to_world * vec4(pp.mesh->positions[idx[3 * t + 2]], 1.0f));
+      const float area = 0.5f * glm::length(glm::cross(p1 - p0, p2 - p0));
+      HitRecord where;
+      where.geom = pp.geom;
+      where.instance = pp.instance;
+      where.prim = t;
+      // Every triangle keeps its slot (so a hit maps to it by index); degenerate ones get
+      // no power and are never chosen.
+      triangles_.push_back({where, p0, p1 - p0, p2 - p0, area});
+      power.push_back(std::isfinite(area) ? double(area) * le * (m.double_sided ? 2.0 : 1.0) : 0.0);
+    }
+  }
+  double total = 0.0;
+  for (double w : power) total += w;
+  if (!(total > 0.0)) {
+    triangles_.clear();
+    first_.clear();
+    return;
+  }
+  pmf_.resize(power.size());
+  cdf_.resize(power.size());
+  double running = 0.0;
+  for (std::size_t i = 0; i < power.size(); ++i) {
+    pmf_[i] = static_cast<float>(power[i] / total);
+    running += power[i];
+    cdf_[i] = static_cast<float>(running / total);
+  }
+  cdf_.back() = 1.0f;
+}
+
+bool AreaLights::sample(const vec3& p, float u_select, const vec2& u_point, AreaLightSample& s) const {
+  if (triangles_.empty()) return false;
+  const std::size_t i = std::min<std::size_t>(
+      std::upper_bound(cdf_.begin(), cdf_.end(), u_select) - cdf_.begin(), cdf_.size() - 1);
+  if (pmf_[i] <= 0.0f) return false;
+  const Triangle& tri = triangles_[i];
+  // Uniform point on the triangle (square-root parameterisation).
+  const float su = std::sqrt(u_point.x);
+  const float b1 = 1.0f - su, b2 = u_point.y * su;
+  s.p = tri.p0 + b1 * tri.e1 + b2 * tri.e2;
+  const vec3 d = s.p - p;
+  const float dist2 = glm::dot(d, d);
+  if (!(dist2 > 0.0f)) return false;
+  s.distance = std::sqrt(dist2);
+  s.wi = d / s.distance;
+  HitRecord at = tri.where;
+  at.u = b1;
+  at.v = b2;
+  at.t = s.distance;
+  const Ray probe{p, s.wi};
+  const SurfaceHit surface = geometry_.surface(probe, at);
+  const ShadingPoint sp = materials_.evaluate(surface);
+  const float cos_light = -glm::dot(surface.ng, s.wi);
+  if (!(cos_light > 0.0f || sp.double_sided)) return false;  // the back of a one-sided emitter
+  const float abs_cos = std::fabs(cos_light);
+  if (!(abs_cos > 0.0f)) return false;
+  s.radiance = sp.emission;
+  s.pdf = pmf_[i] * dist2 / (tri.area * abs_cos);
+  return std::isfinite(s.pdf) && s.pdf > 0.0f;
+}
+
+float AreaLights::pdf(const HitRecord& hit, const SurfaceHit& surface, const vec3& direction) const {
+  const auto it = first_.find(list_key(hit.geom, hit.instance));
+  if (it == first_.end()) return 0.0f;
+  const std::uint32_t i = it->second + hit.prim;
+  if (i >= triangles_.size() || pmf_[i] <= 0.0f) return 0.0f;
+  const float abs_cos = std::fabs(glm::dot(surface.ng, direction));
+  if (!(abs_cos > 0.0f)) return 0.0f;
+  return pmf_[i] * surface.t * surface.t / (triangles_[i].area * abs_cos);
+}
+
+}  // namespace tessera
