@@ -8,6 +8,8 @@ while read -r pkg; do
   [[ -z "$pkg" || "$pkg" == \#* ]] && continue
   dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "install ok installed" || missing+=("$pkg")
 done < "$here/debian-packages.txt"
+# The glTF validator used by the tests runs on Node.js; any node/npm on PATH will do.
+command -v npm >/dev/null 2>&1 || missing+=(nodejs npm)
 [[ ${#missing[@]} -eq 0 ]] && exit 0
 echo "tessera: installing Debian packages: ${missing[*]}" >&2
 sudo=""
