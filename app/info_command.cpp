@@ -3,6 +3,7 @@
 
 #include "app/commands.h"
 #include "app/exit_codes.h"
+#include "app/render_setup.h"
 #include "scene_io/gltf_loader.h"
 
 namespace tessera {
@@ -56,7 +57,7 @@ int run_info(const InfoOptions& o) {
     else
       fmt::print("  {}: '{}' orthographic, xmag {:.4g}, ymag {:.4g}\n", i, c.name, c.xmag, c.ymag);
   }
-  fmt::print("lights      {}\n", s.lights.size());
+  fmt::print("lights      {} punctual, {} emissive triangles\n", s.lights.size(), emissive_triangle_count(s));
   static const char* kLightTypes[] = {"point", "spot", "directional"};
   for (std::size_t i = 0; i < s.lights.size(); ++i)
     fmt::print("  {}: '{}' {}, intensity {:.4g} {}\n", i, s.lights[i].name, kLightTypes[static_cast<int>(s.lights[i].type)],

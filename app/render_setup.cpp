@@ -29,15 +29,19 @@ void resolve_resolution(const Camera* camera, int& width, int& height) {
   if (height <= 0) height = std::max(1, static_cast<int>(std::lround(width / aspect)));
 }
 
-bool scene_has_lights(const SceneDescription& scene) {
-  if (!scene.lights.empty()) return true;
+std::uint64_t emissive_triangle_count(const SceneDescription& scene) {
+  std::uint64_t count = 0;
   for (const Instance& inst : scene.instances)
-    for (const TriangleMesh& prim : scene.meshes[inst.mesh].primitives)
-      if (prim.material >= 0) {
-        const Material& m = scene.materials[prim.material];
-        if (m.emissive_strength > 0.0f && max_component(m.emissive_factor) > 0.0f) return true;
-      }
-  return false;
+    for (const TriangleMesh& prim : scene.meshes[inst.mesh].primitives) {
+      if (prim.material < 0) continue;
+      const Material& m = scene.materials[prim.material];
+      if (m.emissive_strength > 0.0f && max_component(m.emissive_factor) > 0.0f) count += prim.triangle_count();
+    }
+  return count;
+}
+
+bool scene_has_lights(const SceneDescription& scene) {
+  return !scene.lights.empty() || emissive_triangle_count(scene) > 0;
 }
 
 float autofocus_distance(const RenderScene& scene, const RenderCamera& camera) {

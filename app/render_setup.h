@@ -18,7 +18,10 @@ Camera choose_camera(const SceneDescription& scene, const std::string& choice, i
 // ratio; 960 pixels wide when neither is given.
 void resolve_resolution(const Camera* camera, int& width, int& height);
 
-// True when the scene has its own light: a punctual light or an emissive material in use.
+// Triangles placed in the scene whose material emits light (counted per placement).
+std::uint64_t emissive_triangle_count(const SceneDescription& scene);
+
+// True when the scene has its own light: a punctual light or an emissive triangle.
 bool scene_has_lights(const SceneDescription& scene);
 
 // Distance along the view axis to what the centre of the image sees, for autofocus.
