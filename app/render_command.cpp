@@ -7,6 +7,7 @@
 
 #include "app/commands.h"
 #include "app/exit_codes.h"
+#include "app/interrupt.h"
 #include "app/progress.h"
 #include "app/render_setup.h"
 #include "renderer/image_output.h"
@@ -83,6 +84,41 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
+ImageWriteParams write_params(const RenderOptions& o, const RenderSettings& settings, const RenderCamera& rc,
+                              const Camera& camera, const RenderStats& stats) {
+  ImageWriteParams write;
+  write.half = o.half;
+  write.exposure = o.exposure;
+  FrameMetadata& meta = write.metadata;
+  meta.render_seconds = stats.seconds;
+  meta.seed = settings.seed;
+  meta.threads = stats.threads;
+  meta.tile_size = settings.tile_size;
+  meta.max_bounces = settings.max_bounces;
+  meta.dropped_samples = stats.dropped_samples;
+  meta.world_to_camera = rc.world_to_camera();
+  meta.world_to_ndc = rc.world_to_ndc();
+  meta.scene_path = o.scene_path;
+  meta.camera_name = camera.name;
+  meta.partial = stats.cancelled;
+  return write;
+}
+
+void print_summary(const RenderOptions& o, const std::string& output, const RenderSettings& settings,
+                   const RenderResult& result) {
+  const RenderStats& s = result.stats;
+  const int spp = result.image.samples_per_pixel;
+  fmt::print(stderr, "tessera: {}x{}, {} spp, {} threads, tile {}: {:.3f} M samples/s, {:.3f} M rays/s{}\n",
+             settings.width, settings.height, spp, s.threads, settings.tile_size, s.camera_samples / s.seconds * 1e-6,
+             s.rays / s.seconds * 1e-6,
+             s.dropped_samples ? fmt::format(", {} non-finite samples dropped", s.dropped_samples) : "");
+  if (spp == 0)
+    fmt::print(stderr, "tessera: interrupted before every pixel had a sample: {} not written\n", output);
+  else
+    fmt::print(stderr, "tessera: {}wrote {}{}\n", s.cancelled ? fmt::format("interrupted at {} spp; ", spp) : "",
+               output, o.preview.empty() ? "" : " and " + o.preview);
+}
+
 }  // namespace
 
 int run_render(const RenderOptions& o) {
@@ -139,42 +175,23 @@ int run_render(const RenderOptions& o) {
   if (o.aperture > 0.0f && o.focus_distance <= 0.0f) rc.focus_distance = autofocus_distance(scene, rc);
 
   RenderMonitor monitor;
+  InterruptHandler interrupts(monitor.cancel);  // stays installed while writing
   RenderResult result;
   {
     ProgressDisplay progress(monitor, static_cast<std::uint64_t>(settings.width) * settings.height * settings.spp, o.quiet);
     result = render_frame(scene, rc, settings, &monitor);
   }
-
-  ImageWriteParams write;
-  write.half = o.half;
-  write.exposure = o.exposure;
-  FrameMetadata& meta = write.metadata;
-  meta.render_seconds = result.stats.seconds;
-  meta.seed = settings.seed;
-  meta.threads = result.stats.threads;
-  meta.tile_size = settings.tile_size;
-  meta.max_bounces = settings.max_bounces;
-  meta.dropped_samples = result.stats.dropped_samples;
-  meta.world_to_camera = rc.world_to_camera();
-  meta.world_to_ndc = rc.world_to_ndc();
-  meta.scene_path = o.scene_path;
-  meta.camera_name = camera.name;
-  write_image(output, result.image, write);
-  if (!o.preview.empty()) write_image(o.preview, result.image, write);
-
-  if (!o.quiet) {
-    const RenderStats& s = result.stats;
-    fmt::print(stderr,
-               "tessera: {}: {} triangles; load {:.2f} s, BVH and textures {:.2f} s (BVH {:.2f} s), render {:.2f} s\n"
-               "tessera: {}x{}, {} spp, {} threads, tile {}: {:.3f} M samples/s, {:.3f} M rays/s{}\n"
-               "tessera: wrote {}{}\n",
-               o.scene_path, triangles_in_file, load_seconds, setup_seconds, scene.bvh_build_seconds, s.seconds,
-               settings.width, settings.height, result.image.samples_per_pixel, s.threads, settings.tile_size,
-               s.camera_samples / s.seconds * 1e-6, s.rays / s.seconds * 1e-6,
-               s.dropped_samples ? fmt::format(", {} non-finite samples dropped", s.dropped_samples) : "",
-               output, o.preview.empty() ? "" : " and " + o.preview);
+  if (result.image.samples_per_pixel > 0) {
+    const ImageWriteParams write = write_params(o, settings, rc, camera, result.stats);
+    write_image(output, result.image, write);
+    if (!o.preview.empty()) write_image(o.preview, result.image, write);
   }
-  return kExitSuccess;
+  if (!o.quiet) {
+    fmt::print(stderr, "tessera: {}: {} triangles; load {:.2f} s, BVH and textures {:.2f} s (BVH {:.2f} s), render {:.2f} s\n",
+               o.scene_path, triangles_in_file, load_seconds, setup_seconds, scene.bvh_build_seconds, result.stats.seconds);
+    print_summary(o, output, settings, result);
+  }
+  return interrupts.interrupted() ? kExitInterrupted : kExitSuccess;
 }
 
 }  // namespace tessera

@@ -89,6 +89,7 @@ void write_exr(const std::string& path, const FrameImage& img, const ImageWriteP
   header.insert("droppedSamples", Imf::DoubleAttribute(static_cast<double>(m.dropped_samples)));
   header.insert("worldToCamera", Imf::M44fAttribute(to_imath(m.world_to_camera)));
   header.insert("worldToNDC", Imf::M44fAttribute(to_imath(m.world_to_ndc)));
+  header.insert("partial", Imf::IntAttribute(m.partial ? 1 : 0));
   header.insert("software", Imf::StringAttribute("tessera " + tessera_version()));
   header.insert("tesseraVersion", Imf::StringAttribute(tessera_version()));
   if (!m.scene_path.empty()) header.insert("scene", Imf::StringAttribute(m.scene_path));

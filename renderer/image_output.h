@@ -26,6 +26,7 @@ struct FrameMetadata {
   std::uint64_t dropped_samples = 0;
   glm::mat4 world_to_camera{1.0f}, world_to_ndc{1.0f};
   std::string scene_path, camera_name;
+  bool partial = false;  // stopped early: samplesPerPixel tells how far it got
 };
 
 struct ImageWriteParams {
