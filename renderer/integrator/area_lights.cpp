@@ -32,7 +32,12 @@ AreaLights::AreaLights(const SceneDescription& scene, const SceneGeometry& geome
       where.prim = t;
       // Every triangle keeps its slot (so a hit maps to it by index); degenerate ones get
       // no power and are never chosen.
-      triangles_.push_back({where, p0, p1 - p0, p2 - p0, area});
+      // The front-side normal exactly as shading sees it (winding, mirroring, and normals).
+      where.u = where.v = 1.0f / 3.0f;
+      const SurfaceHit centre = geometry.surface(Ray{p0, vec3(0, 0, 1)}, where);
+      const vec3 constant = m.emissive_factor * m.emissive_strength;
+      const bool textured = m.emissive_texture.present();
+      triangles_.push_back({where, p0, p1 - p0, p2 - p0, centre.ng, area, constant, textured, m.double_sided});
       power.push_back(std::isfinite(area) ? double(area) * le * (m.double_sided ? 2.0 : 1.0) : 0.0);
     }
   }
@@ -69,18 +74,19 @@ bool AreaLights::sample(const vec3& p, float u_select, const vec2& u_point, Area
   if (!(dist2 > 0.0f)) return false;
   s.distance = std::sqrt(dist2);
   s.wi = d / s.distance;
-  HitRecord at = tri.where;
-  at.u = b1;
-  at.v = b2;
-  at.t = s.distance;
-  const Ray probe{p, s.wi};
-  const SurfaceHit surface = geometry_.surface(probe, at);
-  const ShadingPoint sp = materials_.evaluate(surface);
-  const float cos_light = -glm::dot(surface.ng, s.wi);
-  if (!(cos_light > 0.0f || sp.double_sided)) return false;  // the back of a one-sided emitter
+  const float cos_light = -glm::dot(tri.normal, s.wi);
+  if (!(cos_light > 0.0f || tri.double_sided)) return false;  // the back of a one-sided emitter
   const float abs_cos = std::fabs(cos_light);
   if (!(abs_cos > 0.0f)) return false;
-  s.radiance = sp.emission;
+  if (!tri.textured) {
+    s.radiance = tri.radiance;
+  } else {
+    HitRecord at = tri.where;
+    at.u = b1;
+    at.v = b2;
+    at.t = s.distance;
+    s.radiance = materials_.evaluate(geometry_.surface(Ray{p, s.wi}, at)).emission;
+  }
   s.pdf = pmf_[i] * dist2 / (tri.area * abs_cos);
   return std::isfinite(s.pdf) && s.pdf > 0.0f;
 }

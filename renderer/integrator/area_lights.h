@@ -37,7 +37,11 @@ class AreaLights {
   struct Triangle {
     HitRecord where;  // geom, prim and instance, to evaluate the surface at a point
     vec3 p0, e1, e2;  // world space
+    vec3 normal;  // unit, front side (as SurfaceHit::ng)
     float area;
+    vec3 radiance;  // the emission when it is constant over the triangle
+    bool textured;  // emission varies: evaluate the material at each point
+    bool double_sided;
   };
   // (top-level id, geometry within it) of a triangle list: instance id and geometry for an
   // instanced mesh, the top-level geometry for a baked one.
