@@ -57,22 +57,45 @@ TextureImage make_texture_image(const Image& image, ColorEncoding encoding) {
   TextureImage out;
   out.width = image.width;
   out.height = image.height;
-  out.texels.resize(static_cast<std::size_t>(image.width) * image.height);
-  // 8-bit sRGB decode through a table: 256 pow() calls instead of one per texel.
-  std::array<float, 256> table;
-  for (int i = 0; i < 256; ++i) table[i] = srgb_to_linear(i / 255.0f);
+  out.encoding = encoding;
+  const std::size_t n = static_cast<std::size_t>(image.width) * image.height;
   const int nc = image.channels;
-  for (std::size_t p = 0; p < out.texels.size(); ++p) {
-    vec4 t(0.0f, 0.0f, 0.0f, 1.0f);
-    for (int c = 0; c < nc; ++c) t[c] = channel(image, p * nc + c);
-    if (nc <= 2) t = vec4(vec3(t.r), nc == 2 ? t.g : 1.0f);  // grey (+ alpha)
+  auto expand = [nc](auto&& value, std::size_t p, auto one) {  // grey, grey+alpha, RGB -> RGBA
+    using T = decltype(one);
+    const T g = value(p * nc);
+    if (nc == 1) return std::array<T, 4>{g, g, g, one};
+    if (nc == 2) return std::array<T, 4>{g, g, g, value(p * nc + 1)};
+    return std::array<T, 4>{g, value(p * nc + 1), value(p * nc + 2), nc == 4 ? value(p * nc + 3) : one};
+  };
+  if (image.bits_per_channel == 8) {
+    out.texels8.resize(n);
+    auto byte = [&](std::size_t i) { return image.pixels[i]; };
+    for (std::size_t p = 0; p < n; ++p) out.texels8[p] = expand(byte, p, std::uint8_t{255});
+    return out;
+  }
+  out.texels_float.resize(n);
+  auto value = [&](std::size_t i) { return channel(image, i); };
+  for (std::size_t p = 0; p < n; ++p) {
+    const std::array<float, 4> t = expand(value, p, 1.0f);
+    vec4 c(t[0], t[1], t[2], t[3]);
     if (encoding == ColorEncoding::SRGB)
-      for (int c = 0; c < 3; ++c)
-        t[c] = image.bits_per_channel == 8 ? table[static_cast<int>(t[c] * 255.0f + 0.5f)]
-                                           : srgb_to_linear(t[c]);
-    out.texels[p] = t;
+      for (int k = 0; k < 3; ++k) c[k] = srgb_to_linear(c[k]);
+    out.texels_float[p] = c;
   }
   return out;
+}
+
+vec4 TextureImage::texel(std::size_t index) const {
+  if (texels8.empty()) return texels_float[index];
+  static const std::array<float, 256> kSrgb = [] {
+    std::array<float, 256> t;
+    for (int i = 0; i < 256; ++i) t[i] = srgb_to_linear(i / 255.0f);
+    return t;
+  }();
+  const std::array<std::uint8_t, 4>& t = texels8[index];
+  constexpr float kInv255 = 1.0f / 255.0f;
+  if (encoding == ColorEncoding::SRGB) return {kSrgb[t[0]], kSrgb[t[1]], kSrgb[t[2]], t[3] * kInv255};
+  return {t[0] * kInv255, t[1] * kInv255, t[2] * kInv255, t[3] * kInv255};
 }
 
 vec4 sample_texture(const TextureImage& image, const TextureRef& ref, vec2 uv) {
@@ -80,8 +103,8 @@ vec4 sample_texture(const TextureImage& image, const TextureRef& ref, vec2 uv) {
   if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) uv = vec2(0.0f);
   const float x = uv.x * image.width - 0.5f, y = uv.y * image.height - 0.5f;
   auto texel = [&](int i, int j) {
-    return image.texels[static_cast<std::size_t>(wrap(j, image.height, ref.wrap_t)) * image.width +
-                        wrap(i, image.width, ref.wrap_s)];
+    return image.texel(static_cast<std::size_t>(wrap(j, image.height, ref.wrap_t)) * image.width +
+                       wrap(i, image.width, ref.wrap_s));
   };
   // Keep coordinates in int range before flooring; wrapping makes far values equivalent.
   const float fx = std::floor(std::fmod(x, 1 << 24)), fy = std::floor(std::fmod(y, 1 << 24));

@@ -1,6 +1,8 @@
 // Textures decoded once into linear float RGBA, sampled with glTF sampler state.
 #pragma once
 
+#include <array>
+#include <cstdint>
 #include <vector>
 
 #include "renderer/math.h"
@@ -8,12 +10,19 @@
 
 namespace tessera {
 
+enum class ColorEncoding { Linear, SRGB };
+
+// 8-bit images stay 8-bit RGBA (a quarter of the memory of floats) and are decoded through
+// a 256-entry table at lookup; 16-bit and float images are stored as linear float RGBA.
 struct TextureImage {
   int width = 0, height = 0;
-  std::vector<vec4> texels;  // linear RGBA, row-major, top row first
-};
+  ColorEncoding encoding = ColorEncoding::Linear;
+  std::vector<std::array<std::uint8_t, 4>> texels8;  // row-major, top row first
+  std::vector<vec4> texels_float;  // linear, when the source has more than 8 bits
 
-enum class ColorEncoding { Linear, SRGB };
+  bool empty() const { return width == 0; }
+  vec4 texel(std::size_t index) const;  // linear RGBA
+};
 
 // Converts a decoded image; SRGB decodes the RGB channels with the sRGB transfer function
 // (alpha is always linear), as glTF requires for baseColor and emissive textures.

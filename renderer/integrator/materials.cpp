@@ -6,7 +6,7 @@ MaterialTable::MaterialTable(const SceneDescription& scene) : materials_(scene.m
   srgb_.resize(scene.images.size());
   linear_.resize(scene.images.size());
   auto need = [&](const TextureRef& ref, std::vector<TextureImage>& cache, ColorEncoding enc) {
-    if (ref.present() && cache[ref.image].texels.empty())
+    if (ref.present() && cache[ref.image].empty())
       cache[ref.image] = make_texture_image(scene.images[ref.image], enc);
   };
   for (const Material& m : materials_) {
