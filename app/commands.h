@@ -17,6 +17,8 @@ struct RenderOptions {
   int max_bounces = 8;
   int threads = 0;
   int tile_size = 32;
+  std::string scheduler = "tiles", tile_order = "scanline";
+  std::string stats_json, trace, heatmap;  // load-balancing outputs, empty: none
   long long seed = 0;
   std::string camera, scene;
   float aperture = 0.0f, focus_distance = 0.0f, fov = 0.0f;

@@ -1,4 +1,5 @@
 // tessera render: glTF in, HDR OpenEXR (and an optional preview) out.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -8,6 +9,7 @@
 #include "app/commands.h"
 #include "app/exit_codes.h"
 #include "app/interrupt.h"
+#include "app/profile_outputs.h"
 #include "app/progress.h"
 #include "app/render_setup.h"
 #include "renderer/image_output.h"
@@ -31,8 +33,23 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
   cmd->add_option("--max-bounces", o.max_bounces, "Most scattering events per path (0: emitters and environment only)")
       ->check(CLI::Range(0, 1024))->capture_default_str();
   cmd->add_option("--threads", o.threads, "Render threads [default: all cores]")->check(CLI::Range(1, 1024));
-  cmd->add_option("--tile-size", o.tile_size, "Tile edge in pixels; tiles are handed to threads dynamically")
-      ->check(CLI::Range(1, 4096))->capture_default_str();
+  cmd->add_option("--tile-size", o.tile_size, "Tile edge in pixels")->check(CLI::Range(1, 4096))->capture_default_str();
+  cmd->add_option("--scheduler", o.scheduler,
+                  "Who renders which tile: tiles (TBB tasks, dynamic, work stealing), chunks (one block of rows "
+                  "per thread, static), counter (threads take the next tile from one shared atomic counter), "
+                  "interleaved (tile i to thread i mod n, static). Same image with each")
+      ->check(CLI::IsMember(scheduler_names()))->capture_default_str();
+  cmd->add_option("--tile-order", o.tile_order,
+                  "Order tiles are handed out: scanline, spiral (from the image centre outwards), hilbert "
+                  "(along a Hilbert curve). Same image with each")
+      ->check(CLI::IsMember(tile_order_names()))->capture_default_str();
+  cmd->add_option("--stats-json", o.stats_json,
+                  "Write the load-balance statistics as JSON: every tile in every sample wave (thread, start, end, "
+                  "samples, rays), every thread (busy, idle), the frame (wall time, efficiency, imbalance, tail)");
+  cmd->add_option("--trace", o.trace,
+                  "Write a Chrome trace-event timeline (FILE.json: one track per thread, one slice per tile) "
+                  "for Perfetto (ui.perfetto.dev) or chrome://tracing");
+  cmd->add_option("--heatmap", o.heatmap, "Write the time spent on each tile as a colour map with a legend (FILE.png)");
   cmd->add_option("--seed", o.seed, "Seed of every random number (same seed, same image, for any thread count)")
       ->check(CLI::Range(0LL, 2147483647LL))->capture_default_str();
   cmd->add_option("--camera", o.camera, "Camera by index or name [default: the scene's first, else an automatic camera framing the scene]");
@@ -53,9 +70,11 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
       ->check(CLI::Range(0.0f, 1e9f))->capture_default_str();
   cmd->add_option("--envmap-rotate", o.envmap_rotate, "Rotation of the environment about +Y, degrees")
       ->capture_default_str();
-  cmd->add_option("--aov", o.aovs, "Extra EXR layers: albedo (Albedo.RGB), normal (N.XYZ, world space), depth (Z)")
+  cmd->add_option("--aov", o.aovs,
+                  "Extra EXR layers: albedo (Albedo.RGB), normal (N.XYZ, world space), depth (Z), "
+                  "cost (cost.time: seconds spent on the pixel's tile)")
       ->delimiter(',')
-      ->check(CLI::IsMember({"albedo", "normal", "depth"}));
+      ->check(CLI::IsMember({"albedo", "normal", "depth", "cost"}));
   cmd->add_flag("--half", o.half, "Write 16-bit half floats to the EXR instead of 32-bit floats");
   cmd->add_option("--exposure", o.exposure, "Exposure in stops for display formats (PNG, JPEG, ...)")
       ->check(CLI::Range(-64.0f, 64.0f))->capture_default_str();
@@ -108,9 +127,12 @@ void print_summary(const RenderOptions& o, const std::string& output, const Rend
                    const RenderResult& result) {
   const RenderStats& s = result.stats;
   const int spp = result.image.samples_per_pixel;
-  fmt::print(stderr, "tessera: {}x{}, {} spp, {} threads, tile {}: {:.3f} M samples/s, {:.3f} M rays/s{}\n",
+  fmt::print(stderr,
+             "tessera: {}x{}, {} spp, {} threads, tile {}: {:.3f} M samples/s, {:.3f} M rays/s; {} {}: "
+             "efficiency {:.1f}%, imbalance {:.2f}{}\n",
              settings.width, settings.height, spp, s.threads, settings.tile_size, s.camera_samples / s.seconds * 1e-6,
-             s.rays / s.seconds * 1e-6,
+             s.rays / s.seconds * 1e-6, scheduler_name(settings.scheduler), tile_order_name(settings.tile_order),
+             100.0 * s.efficiency, s.imbalance,
              s.dropped_samples ? fmt::format(", {} non-finite samples dropped", s.dropped_samples) : "");
   if (spp == 0)
     fmt::print(stderr, "tessera: interrupted before every pixel had a sample: {} not written\n", output);
@@ -125,6 +147,8 @@ int run_render(const RenderOptions& o) {
   const std::string output = o.output.empty() ? default_output(o.scene_path) : o.output;
   check_output_path(output);  // before any work: a bad path costs nothing
   if (!o.preview.empty()) check_output_path(o.preview);
+  const ProfileOutputs profile_outputs{o.stats_json, o.trace, o.heatmap};
+  check_profile_outputs(profile_outputs);
 
   auto t0 = std::chrono::steady_clock::now();
   GltfLoadResult loaded = load_gltf(o.scene_path, {o.scene});
@@ -154,6 +178,10 @@ int run_render(const RenderOptions& o) {
     settings.aovs.normal |= a == "normal";
     settings.aovs.depth |= a == "depth";
   }
+  const bool cost_layer = std::find(o.aovs.begin(), o.aovs.end(), "cost") != o.aovs.end();
+  settings.scheduler = parse_scheduler(o.scheduler);
+  settings.tile_order = parse_tile_order(o.tile_order);
+  settings.record_tiles = profile_outputs.needs_tile_records();
 
   EnvironmentParams env;
   env.background = parse_background(o.background, scene_has_lights(loaded.scene));
@@ -181,6 +209,10 @@ int run_render(const RenderOptions& o) {
     ProgressDisplay progress(monitor, static_cast<std::uint64_t>(settings.width) * settings.height * settings.spp, o.quiet);
     result = render_frame(scene, rc, settings, &monitor);
   }
+  if (cost_layer) result.image.cost = tile_cost_image(result.profile);
+  write_profile_outputs(profile_outputs, result,
+                        fmt::format("{}: {}, {}, {} threads", std::filesystem::path(o.scene_path).filename().string(),
+                                    o.scheduler, o.tile_order, result.stats.threads));
   if (result.image.samples_per_pixel > 0) {
     const ImageWriteParams write = write_params(o, settings, rc, camera, result.stats);
     write_image(output, result.image, write);

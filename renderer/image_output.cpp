@@ -1,11 +1,8 @@
 #include "renderer/image_output.h"
 
-#include <unistd.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
 
 #include <Imath/half.h>
@@ -20,6 +17,7 @@
 #include <OpenEXR/ImfStringAttribute.h>
 #include <OpenImageIO/imageio.h>
 
+#include "renderer/file_output.h"
 #include "renderer/texture.h"
 
 #ifndef TESSERA_VERSION
@@ -76,6 +74,7 @@ void write_exr(const std::string& path, const FrameImage& img, const ImageWriteP
   if (!img.albedo.empty()) add_channels(channels, img.albedo, 3, {"Albedo.R", "Albedo.G", "Albedo.B"});
   if (!img.normal.empty()) add_channels(channels, img.normal, 3, {"N.X", "N.Y", "N.Z"});
   if (!img.depth.empty()) add_channels(channels, img.depth, 1, {"Z"});
+  if (!img.cost.empty()) add_channels(channels, img.cost, 1, {"cost.time"});
 
   const FrameMetadata& m = params.metadata;
   Imf::Header header(img.width, img.height);
@@ -116,30 +115,25 @@ void write_exr(const std::string& path, const FrameImage& img, const ImageWriteP
   file.writePixels(img.height);
 }
 
-void write_oiio(const std::string& path, const FrameImage& img, const ImageWriteParams& params) {
+void write_oiio_pixels(const std::string& path, int width, int height, OIIO::TypeDesc type, const void* pixels) {
   auto out = OIIO::ImageOutput::create(path);
   if (!out) throw OutputError(path + ": no image writer for this format (" + OIIO::geterror() + ")");
-  const bool linear_float = is_float_format(lower_extension(path));
-  OIIO::ImageSpec spec(img.width, img.height, 3, linear_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
+  OIIO::ImageSpec spec(width, height, 3, type);
   spec.attribute("Software", "tessera " + tessera_version());
   if (!out->open(path, spec)) throw OutputError(path + ": " + out->geterror());
-  bool ok;
-  if (linear_float) {
+  if (!out->write_image(type, pixels) || !out->close()) throw OutputError(path + ": " + out->geterror());
+}
+
+void write_oiio(const std::string& path, const FrameImage& img, const ImageWriteParams& params) {
+  if (is_float_format(lower_extension(path))) {
     const float scale = std::exp2(params.exposure);
     std::vector<float> scaled(img.rgb);
     for (float& v : scaled) v *= scale;
-    ok = out->write_image(OIIO::TypeDesc::FLOAT, scaled.data());
+    write_oiio_pixels(path, img.width, img.height, OIIO::TypeDesc::FLOAT, scaled.data());
   } else {
     const std::vector<std::uint8_t> rgb = to_display_rgb8(img, params.exposure);
-    ok = out->write_image(OIIO::TypeDesc::UINT8, rgb.data());
+    write_oiio_pixels(path, img.width, img.height, OIIO::TypeDesc::UINT8, rgb.data());
   }
-  if (!ok || !out->close()) throw OutputError(path + ": " + out->geterror());
-}
-
-fs::path temporary_sibling(const fs::path& target) {
-  // Same directory (so rename is atomic), same extension (so writers pick the format).
-  return target.parent_path() /
-         (".tessera-tmp-" + std::to_string(::getpid()) + "-" + target.filename().string());
 }
 
 }  // namespace
@@ -157,38 +151,27 @@ std::vector<std::uint8_t> to_display_rgb8(const FrameImage& image, float exposur
 
 void check_output_path(const std::string& path) {
   if (path.empty()) throw OutputError("output path is empty");
-  const fs::path p(path);
   const std::string ext = lower_extension(path);
   if (ext != ".exr") {
     auto writer = OIIO::ImageOutput::create(path);
     if (!writer) throw OutputError(path + ": unknown image format '" + ext + "' (use .exr, .png, .jpg, .ppm, .hdr, .tif, ...)");
   }
-  std::error_code ec;
-  if (fs::is_directory(p, ec)) throw OutputError(path + ": is a directory");
-  const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
-  if (!fs::is_directory(dir, ec)) throw OutputError(path + ": directory " + dir.string() + " does not exist");
-  if (::access(dir.c_str(), W_OK) != 0) throw OutputError(path + ": directory " + dir.string() + " is not writable");
+  check_writable_path(path);
 }
 
 void write_image(const std::string& path, const FrameImage& image, const ImageWriteParams& params) {
   check_output_path(path);
-  const fs::path target(path);
-  const fs::path tmp = temporary_sibling(target);
-  try {
-    if (lower_extension(path) == ".exr") write_exr(tmp.string(), image, params);
-    else write_oiio(tmp.string(), image, params);
-  } catch (const std::exception& e) {
-    std::error_code ec;
-    fs::remove(tmp, ec);
-    const std::string what = e.what();
-    throw OutputError(what.rfind(path, 0) == 0 ? what : path + ": " + what);
-  }
-  if (std::rename(tmp.c_str(), target.c_str()) != 0) {
-    const std::string reason = std::strerror(errno);
-    std::error_code ec;
-    fs::remove(tmp, ec);
-    throw OutputError(path + ": cannot be replaced: " + reason);
-  }
+  write_file_atomically(path, [&](const std::string& tmp) {
+    if (lower_extension(path) == ".exr") write_exr(tmp, image, params);
+    else write_oiio(tmp, image, params);
+  });
+}
+
+void write_rgb8_image(const std::string& path, int width, int height, const std::vector<std::uint8_t>& rgb) {
+  check_output_path(path);
+  write_file_atomically(path, [&](const std::string& tmp) {
+    write_oiio_pixels(tmp, width, height, OIIO::TypeDesc::UINT8, rgb.data());
+  });
 }
 
 }  // namespace tessera

@@ -42,6 +42,10 @@ void check_output_path(const std::string& path);
 // Writes `image` to `path`, choosing the format by extension. Throws OutputError.
 void write_image(const std::string& path, const FrameImage& image, const ImageWriteParams& params);
 
+// Writes 8-bit RGB pixels as they are (a chart, a heat map) through OpenImageIO, row-major,
+// top row first, atomically like write_image. Throws OutputError.
+void write_rgb8_image(const std::string& path, int width, int height, const std::vector<std::uint8_t>& rgb);
+
 // sRGB-encoded 8-bit RGB of the frame with `exposure` stops, row-major, top row first.
 std::vector<std::uint8_t> to_display_rgb8(const FrameImage& image, float exposure);
 

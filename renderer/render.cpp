@@ -3,10 +3,9 @@
 #include <chrono>
 
 #include <tbb/info.h>
-#include <tbb/task_arena.h>
 
 #include "renderer/integrator/path_tracer.h"
-#include "renderer/tile_scheduler.h"
+#include "renderer/schedulers.h"
 
 namespace tessera {
 
@@ -59,26 +58,31 @@ RenderResult render_frame(const RenderScene& scene, const RenderCamera& camera,
   RenderMonitor& mon = monitor ? *monitor : local;
   mon.samples_total = static_cast<std::uint64_t>(settings.width) * settings.height * settings.spp;
   Film film(settings.width, settings.height, settings.aovs);
-  const std::vector<Tile> tiles = make_tiles(settings.width, settings.height, settings.tile_size);
   const int threads = settings.threads > 0 ? settings.threads : default_thread_count();
+  const WorkPlan plan = make_work_plan(
+      {settings.width, settings.height, settings.tile_size, threads, settings.scheduler, settings.tile_order});
+  const std::vector<SampleWave> waves = make_sample_waves(settings.spp);
+  ProfileRecorder recorder(plan, static_cast<int>(waves.size()), settings.record_tiles);
   std::atomic<std::uint64_t> dropped{0}, samples{0};
 
   const auto start = std::chrono::steady_clock::now();
-  tbb::task_arena arena(threads);
-  arena.execute([&] {
-    for (const SampleWave& wave : make_sample_waves(settings.spp)) {
-      if (mon.cancel.load(std::memory_order_relaxed)) break;
-      run_tiles_dynamic(tiles.size(), [&](std::size_t i) {
-        if (mon.cancel.load(std::memory_order_relaxed)) return;
-        TileCounters c;
-        render_tile(scene, camera, settings, tiles[i], wave, film, c);
-        samples += c.samples;
-        dropped += c.path.dropped;
-        mon.samples_done += c.samples;
-        mon.rays += c.path.rays;
-      });
-    }
-  });
+  WaveRunner runner(plan);
+  for (std::size_t w = 0; w < waves.size(); ++w) {
+    if (mon.cancel.load(std::memory_order_relaxed)) break;
+    recorder.begin_wave(static_cast<int>(w), waves[w].begin, waves[w].end);
+    runner.run([&](std::size_t i, int thread) {
+      if (mon.cancel.load(std::memory_order_relaxed)) return;
+      const double t0 = recorder.now();
+      TileCounters c;
+      render_tile(scene, camera, settings, plan.items[i].rect, waves[w], film, c);
+      recorder.record(i, thread, t0, recorder.now(), c.samples, c.path.rays);
+      samples += c.samples;
+      dropped += c.path.dropped;
+      mon.samples_done += c.samples;
+      mon.rays += c.path.rays;
+    });
+    recorder.end_wave();
+  }
   RenderResult result;
   result.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   result.stats.camera_samples = samples;
@@ -86,6 +90,9 @@ RenderResult render_frame(const RenderScene& scene, const RenderCamera& camera,
   result.stats.dropped_samples = dropped;
   result.stats.threads = threads;
   result.stats.cancelled = mon.cancel;
+  result.profile = recorder.finish();
+  result.stats.efficiency = result.profile.balance.efficiency;
+  result.stats.imbalance = result.profile.balance.imbalance;
   result.image = film.resolve();
   return result;
 }

@@ -1,5 +1,6 @@
-// Renders one frame: sample waves over the whole image, tiles of each wave spread over
-// all threads by TBB, every random number a function of (pixel, sample, dimension, seed).
+// Renders one frame: sample waves over the whole image, the tiles of each wave shared among
+// the threads by the chosen scheduler, every random number a function of (pixel, sample,
+// dimension, seed).
 #pragma once
 
 #include <atomic>
@@ -8,6 +9,7 @@
 #include "renderer/camera.h"
 #include "renderer/film.h"
 #include "renderer/render_scene.h"
+#include "renderer/render_stats.h"
 
 namespace tessera {
 
@@ -19,6 +21,9 @@ struct RenderSettings {
   int tile_size = 32;
   std::uint32_t seed = 0;
   AovSelection aovs;
+  SchedulerKind scheduler = SchedulerKind::tiles;
+  TileOrder tile_order = TileOrder::scanline;
+  bool record_tiles = false;  // keep a TileRecord per item and wave in RenderResult::profile
 };
 
 // Live counters a progress display may poll while rendering, and a way to stop early
@@ -35,11 +40,13 @@ struct RenderStats {
   std::uint64_t camera_samples = 0, rays = 0, dropped_samples = 0;
   int threads = 0;
   bool cancelled = false;
+  double efficiency = 1.0, imbalance = 1.0;  // see LoadBalance
 };
 
 struct RenderResult {
   FrameImage image;
   RenderStats stats;
+  FrameProfile profile;
 };
 
 RenderResult render_frame(const RenderScene& scene, const RenderCamera& camera,

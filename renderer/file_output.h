@@ -1,0 +1,23 @@
+// The project's rule for every output file: write it under a temporary name beside the
+// target (same directory, so the rename is atomic; same extension, so writers that choose a
+// format by name still do), then rename it into place. A failed run never truncates or
+// replaces an existing file.
+#pragma once
+
+#include <functional>
+#include <string>
+
+namespace tessera {
+
+// Throws OutputError when the directory of `path` is missing or not writable, or `path`
+// is a directory. Call it before the work that produces the file.
+void check_writable_path(const std::string& path);
+
+// Calls write(temporary path), then renames the temporary file to `path`. Any exception
+// from `write` removes the temporary file and is rethrown as OutputError naming `path`.
+void write_file_atomically(const std::string& path, const std::function<void(const std::string&)>& write);
+
+// A text file (JSON, CSV, Markdown, SVG), written atomically.
+void write_text_file(const std::string& path, const std::string& text);
+
+}  // namespace tessera

@@ -1,0 +1,84 @@
+// Where the time of a frame went: per work item and wave, per thread, per wave, and the
+// load-balance figures of the whole frame. Collected without locks: every thread writes only
+// its own slot, and every item's slot is written by the one thread that runs it.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <vector>
+
+#include "renderer/schedulers.h"
+
+namespace tessera {
+
+// One item rendered in one sample wave. Times are seconds since the frame started.
+struct TileRecord {
+  int item = -1, wave = -1;
+  int thread = -1;  // -1: never ran (the frame was cancelled first)
+  double start = 0.0, end = 0.0;
+  std::uint64_t samples = 0, rays = 0;
+};
+
+struct ThreadStats {
+  double busy = 0.0;  // inside items
+  double idle = 0.0;  // wall time minus busy: waiting for work, at wave ends, or not scheduled
+  std::uint64_t items = 0;
+};
+
+struct WaveStats {
+  int sample_begin = 0, sample_end = 0;  // samples [begin, end) of every pixel
+  double start = 0.0, end = 0.0;
+  double tail = 0.0;  // from the first thread running out of work to the end of the wave
+};
+
+struct LoadBalance {
+  double wall = 0.0;  // seconds from the first wave's start to the last wave's end
+  double efficiency = 1.0;  // busy time summed over threads / (threads x wall)
+  double imbalance = 1.0;  // max over mean thread busy time
+  double tail = 0.0;  // the waves' tails summed: a barrier ends every wave
+};
+
+struct FrameProfile {
+  WorkPlan plan;
+  std::vector<WaveStats> waves;
+  std::vector<ThreadStats> threads;
+  std::vector<double> item_seconds;  // per item, summed over waves
+  std::vector<TileRecord> records;  // waves x items, wave-major; empty unless asked for
+  LoadBalance balance;
+};
+
+// Busy and idle per thread, efficiency, imbalance and tail, from what the threads recorded.
+LoadBalance load_balance(const std::vector<ThreadStats>& threads, const std::vector<WaveStats>& waves);
+
+// Seconds spent on each tile of the grid (row-major), summed over its items and the waves.
+std::vector<double> tile_seconds(const FrameProfile& profile);
+
+// A per-pixel image (row-major) of the seconds spent on the pixel's tile.
+std::vector<float> tile_cost_image(const FrameProfile& profile);
+
+// Collects a FrameProfile while a frame renders. The driving thread calls begin_wave and
+// end_wave between waves; worker threads call record once per item, touching only the
+// slots of their own thread and of that item.
+class ProfileRecorder {
+ public:
+  ProfileRecorder(const WorkPlan& plan, int waves, bool record_tiles);
+
+  double now() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
+  void begin_wave(int wave, int sample_begin, int sample_end);
+  void record(std::size_t item, int thread, double start, double end, std::uint64_t samples, std::uint64_t rays);
+  void end_wave();
+  FrameProfile finish();
+
+ private:
+  struct alignas(64) ThreadSlot {  // one cache line per thread: no false sharing
+    double busy = 0.0, last_end = 0.0;
+    std::uint64_t items = 0;
+  };
+  std::chrono::steady_clock::time_point start_;
+  FrameProfile profile_;
+  std::vector<ThreadSlot> slots_;
+  bool record_tiles_;
+  int wave_ = -1;
+};
+
+}  // namespace tessera

@@ -1,0 +1,130 @@
+#include "renderer/schedulers.h"
+
+#include <algorithm>
+#include <atomic>
+#include <stdexcept>
+#include <thread>
+
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+#include <tbb/task_arena.h>
+
+namespace tessera {
+
+const std::vector<std::string>& scheduler_names() {
+  static const std::vector<std::string> names = {"tiles", "chunks", "counter", "interleaved"};
+  return names;
+}
+
+const char* scheduler_name(SchedulerKind kind) { return scheduler_names()[static_cast<int>(kind)].c_str(); }
+
+SchedulerKind parse_scheduler(const std::string& name) {
+  const auto& names = scheduler_names();
+  const auto it = std::find(names.begin(), names.end(), name);
+  if (it == names.end()) throw std::invalid_argument("unknown scheduler '" + name + "'");
+  return static_cast<SchedulerKind>(it - names.begin());
+}
+
+std::vector<int> chunk_rows(int height, int threads) {
+  std::vector<int> rows(threads + 1);
+  const int per = height / threads;
+  for (int t = 0; t < threads; ++t) rows[t] = t * per;
+  rows[threads] = height;
+  return rows;
+}
+
+namespace {
+
+// Cuts every tile at the block boundaries; items keep the tile order within each block.
+void split_into_chunks(WorkPlan& plan, const std::vector<WorkItem>& ordered) {
+  const int n = plan.params.threads;
+  const std::vector<int> rows = chunk_rows(plan.params.height, n);
+  plan.chunk_begin.assign(1, 0);
+  for (int c = 0; c < n; ++c) {
+    for (const WorkItem& item : ordered) {
+      const int y0 = std::max(item.rect.y0, rows[c]), y1 = std::min(item.rect.y1, rows[c + 1]);
+      if (y0 < y1) plan.items.push_back({{item.rect.x0, y0, item.rect.x1, y1}, item.tile, c});
+    }
+    plan.chunk_begin.push_back(plan.items.size());
+  }
+}
+
+// Runs thread_main(t) for t in [0, n) on n threads: n - 1 new ones and the caller.
+template <typename F>
+void on_n_threads(int n, const F& thread_main) {
+  std::vector<std::thread> pool;
+  pool.reserve(n - 1);
+  for (int t = 1; t < n; ++t) pool.emplace_back([&, t] { thread_main(t); });
+  thread_main(0);
+  for (std::thread& th : pool) th.join();
+}
+
+void run_chunks(const WorkPlan& plan, const ItemBody& body) {
+  on_n_threads(plan.params.threads, [&](int t) {
+    for (std::size_t i = plan.chunk_begin[t]; i < plan.chunk_begin[t + 1]; ++i) body(i, t);
+  });
+}
+
+void run_interleaved(const WorkPlan& plan, const ItemBody& body) {
+  const std::size_t n = plan.params.threads;
+  on_n_threads(plan.params.threads, [&](int t) {
+    for (std::size_t i = t; i < plan.items.size(); i += n) body(i, t);
+  });
+}
+
+void run_counter(const WorkPlan& plan, const ItemBody& body) {
+  // One counter for everyone; its cache line ping-pongs once per tile, not per ray.
+  alignas(64) std::atomic<std::size_t> next{0};
+  on_n_threads(plan.params.threads, [&](int t) {
+    for (std::size_t i; (i = next.fetch_add(1, std::memory_order_relaxed)) < plan.items.size();) body(i, t);
+  });
+}
+
+}  // namespace
+
+WorkPlan make_work_plan(const WorkPlanParams& params) {
+  WorkPlan plan;
+  plan.params = params;
+  plan.grid = tile_grid(params.width, params.height, params.tile_size);
+  plan.tiles = make_tiles(params.width, params.height, params.tile_size);
+  std::vector<WorkItem> ordered;
+  ordered.reserve(plan.tiles.size());
+  for (int t : tile_order(plan.grid, params.order)) ordered.push_back({plan.tiles[t], t, 0});
+  if (params.scheduler == SchedulerKind::chunks) split_into_chunks(plan, ordered);
+  else plan.items = std::move(ordered);
+  return plan;
+}
+
+// TBB only lets an arena have as many threads as the process allows (the core count by
+// default), so more threads than cores need a global_control for the frame.
+struct WaveRunner::Arena {
+  explicit Arena(int threads)
+      : control(tbb::global_control::max_allowed_parallelism,
+                static_cast<std::size_t>(std::max(threads, tbb::info::default_concurrency()))),
+        arena(threads) {}
+  tbb::global_control control;
+  tbb::task_arena arena;
+};
+
+WaveRunner::WaveRunner(const WorkPlan& plan) : plan_(plan) {
+  if (plan.params.scheduler == SchedulerKind::tiles) arena_ = std::make_unique<Arena>(plan.params.threads);
+}
+
+WaveRunner::~WaveRunner() = default;
+
+void WaveRunner::run(const ItemBody& body) {
+  switch (plan_.params.scheduler) {
+    case SchedulerKind::tiles:
+      arena_->arena.execute([&] {
+        run_tiles_dynamic(plan_.items.size(), [&](std::size_t i) {
+          body(i, tbb::this_task_arena::current_thread_index());
+        });
+      });
+      break;
+    case SchedulerKind::chunks: run_chunks(plan_, body); break;
+    case SchedulerKind::counter: run_counter(plan_, body); break;
+    case SchedulerKind::interleaved: run_interleaved(plan_, body); break;
+  }
+}
+
+}  // namespace tessera
