@@ -23,6 +23,33 @@ int gltf_component_count(int type) {
   }
 }
 
+const char* gltf_type_name(int type) {
+  switch (type) {
+    case TINYGLTF_TYPE_SCALAR: return "SCALAR";
+    case TINYGLTF_TYPE_VEC2: return "VEC2";
+    case TINYGLTF_TYPE_VEC3: return "VEC3";
+    case TINYGLTF_TYPE_VEC4: return "VEC4";
+    case TINYGLTF_TYPE_MAT2: return "MAT2";
+    case TINYGLTF_TYPE_MAT3: return "MAT3";
+    case TINYGLTF_TYPE_MAT4: return "MAT4";
+    default: return "unknown";
+  }
+}
+
+const char* gltf_component_type_name(int component_type) {
+  switch (component_type) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE: return "BYTE";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return "UNSIGNED_BYTE";
+    case TINYGLTF_COMPONENT_TYPE_SHORT: return "SHORT";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return "UNSIGNED_SHORT";
+    case TINYGLTF_COMPONENT_TYPE_INT: return "INT";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return "UNSIGNED_INT";
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: return "FLOAT";
+    case TINYGLTF_COMPONENT_TYPE_DOUBLE: return "DOUBLE";
+    default: return "unknown";
+  }
+}
+
 int gltf_component_size(int component_type) {
   switch (component_type) {
     case TINYGLTF_COMPONENT_TYPE_BYTE:
@@ -77,8 +104,8 @@ void AccessorReader::fail(const std::string& problem) const { throw SceneLoadErr
 
 const tinygltf::Accessor& AccessorReader::accessor(int index, const std::string& what) const {
   if (index < 0 || index >= static_cast<int>(model.accessors.size()))
-    fail(fmt::format("{} refers to accessor {}, but the file has {} accessors", what, index,
-                     model.accessors.size()));
+    fail(fmt::format("{} refers to accessor {}, but the file has {}", what, index,
+                     count_of(model.accessors.size(), "accessor")));
   return model.accessors[index];
 }
 
@@ -86,12 +113,12 @@ const std::uint8_t* AccessorReader::view_bytes(int view, std::size_t offset, std
                                                std::size_t count, std::size_t element_size,
                                                const std::string& what) const {
   if (view < 0 || view >= static_cast<int>(model.bufferViews.size()))
-    fail(fmt::format("{} refers to bufferView {}, but the file has {} bufferViews", what, view,
-                     model.bufferViews.size()));
+    fail(fmt::format("{} refers to bufferView {}, but the file has {}", what, view,
+                     count_of(model.bufferViews.size(), "bufferView")));
   const tinygltf::BufferView& bv = model.bufferViews[view];
   if (bv.buffer < 0 || bv.buffer >= static_cast<int>(model.buffers.size()))
-    fail(fmt::format("bufferView {} refers to buffer {}, but the file has {} buffers", view,
-                     bv.buffer, model.buffers.size()));
+    fail(fmt::format("bufferView {} refers to buffer {}, but the file has {}", view, bv.buffer,
+                     count_of(model.buffers.size(), "buffer")));
   const std::vector<unsigned char>& data = model.buffers[bv.buffer].data;
   if (bv.byteOffset > data.size() || bv.byteLength > data.size() - bv.byteOffset)
     fail(fmt::format("bufferView {} spans bytes {}..{} of buffer {}, which has only {} bytes",
@@ -99,29 +126,42 @@ const std::uint8_t* AccessorReader::view_bytes(int view, std::size_t offset, std
   if (count == 0) return data.data() + bv.byteOffset;
   // Last byte read: offset + stride * (count - 1) + element_size, computed without overflow.
   const std::size_t limit = bv.byteLength;
-  if (offset > limit || (count - 1) > (limit - offset) / std::max<std::size_t>(stride, 1) ||
-      offset + stride * (count - 1) + element_size > limit)
-    fail(fmt::format("{}: {} elements of {} bytes with stride {} from byte {} run past the end "
-                     "of bufferView {} ({} bytes)",
-                     what, count, element_size, stride, offset, view, limit));
+  if (offset > limit)
+    fail(fmt::format("{} starts at byte {} of bufferView {}, which has only {} bytes", what, offset,
+                     view, limit));
+  if ((count - 1) > (limit - offset) / std::max<std::size_t>(stride, 1) ||
+      offset + stride * (count - 1) + element_size > limit) {
+    // count <= 2^31 and stride, element_size < 2^16: no overflow in 64 bits.
+    const std::uint64_t end = std::uint64_t{offset} + std::uint64_t{stride} * (count - 1) + element_size;
+    fail(fmt::format("{} needs bytes {}..{} of bufferView {}, which has only {} bytes", what, offset,
+                     end, view, limit));
+  }
   return data.data() + bv.byteOffset + offset;
 }
 
 void AccessorReader::read_dense(const tinygltf::Accessor& acc, int components,
                                 const std::string& what, std::vector<double>& out) const {
-  if (acc.bufferView < 0) return;  // all zeros (only sparse values, if any)
+  if (acc.bufferView < 0) {  // all zeros (only sparse values, if any)
+    out.assign(acc.count * components, 0.0);
+    return;
+  }
   const int csize = gltf_component_size(acc.componentType);
   const std::size_t element = static_cast<std::size_t>(csize) * components;
   std::size_t stride = element;
   const auto& views = model.bufferViews;
   if (acc.bufferView < static_cast<int>(views.size()) && views[acc.bufferView].byteStride != 0) {
     stride = views[acc.bufferView].byteStride;
-    if (stride < element || stride % csize != 0)
-      fail(fmt::format("{}: bufferView {} has byteStride {}, invalid for elements of {} bytes",
-                       what, acc.bufferView, stride, element));
+    if (stride < element)
+      fail(fmt::format("{} has {}-byte elements, but its bufferView {} has byteStride {}", what,
+                       element, acc.bufferView, stride));
+    if (stride % csize != 0)
+      fail(fmt::format("{} has {}-byte components, but its bufferView {} has byteStride {}, not "
+                       "a multiple of {}",
+                       what, csize, acc.bufferView, stride, csize));
   }
   const std::uint8_t* base = view_bytes(acc.bufferView, acc.byteOffset, stride, acc.count,
                                         element, what);
+  out.resize(acc.count * components);  // only now: the count is known to fit the buffer
   for (std::size_t i = 0; i < acc.count; ++i)
     for (int c = 0; c < components; ++c)
       out[i * components + c] =
@@ -148,8 +188,8 @@ void AccessorReader::apply_sparse(const tinygltf::Accessor& acc, int components,
   for (int i = 0; i < sp.count; ++i) {
     const double target = decode(idx + i * isize, itype, false);
     if (target >= static_cast<double>(acc.count))
-      fail(fmt::format("{}: sparse index {} is out of range (count {})", what,
-                       static_cast<std::uint64_t>(target), acc.count));
+      fail(fmt::format("{} has sparse index {} (sparse element {}), but only {}", what,
+                       static_cast<std::uint64_t>(target), i, count_of(acc.count, "element")));
     for (int c = 0; c < components; ++c)
       out[static_cast<std::size_t>(target) * components + c] =
           decode(val + (i * components + c) * csize, acc.componentType, acc.normalized);
@@ -160,13 +200,14 @@ std::vector<double> AccessorReader::read(int index, int components, const std::s
   const tinygltf::Accessor& acc = accessor(index, what);
   const std::string name = fmt::format("accessor {} ({})", index, what);
   if (gltf_component_size(acc.componentType) == 0)
-    fail(fmt::format("{} has invalid componentType {}", name, acc.componentType));
+    fail(fmt::format("{} has componentType {} ({}), which glTF 2.0 does not allow", name,
+                     acc.componentType, gltf_component_type_name(acc.componentType)));
   if (gltf_component_count(acc.type) != components)
-    fail(fmt::format("{} has {} components per element, expected {}", name,
-                     gltf_component_count(acc.type), components));
+    fail(fmt::format("{} has type {}, but {} is needed", name, gltf_type_name(acc.type),
+                     components == 1 ? "SCALAR" : fmt::format("VEC{}", components)));
   if (acc.count > (std::size_t{1} << 31))
     fail(fmt::format("{} has an implausible count {}", name, acc.count));
-  std::vector<double> out(acc.count * components, 0.0);
+  std::vector<double> out;
   read_dense(acc, components, name, out);
   if (acc.sparse.isSparse) apply_sparse(acc, components, name, out);
   return out;
@@ -177,7 +218,8 @@ std::vector<float> AccessorReader::floats(int index, int components, const std::
   std::vector<float> out(values.size());
   for (std::size_t i = 0; i < values.size(); ++i) {
     if (!std::isfinite(values[i]))
-      fail(fmt::format("accessor {} ({}) holds a non-finite value at element {}", index, what,
+      fail(fmt::format("accessor {} ({}) holds {} at element {}", index, what,
+                       std::isnan(values[i]) ? "NaN" : values[i] > 0 ? "+infinity" : "-infinity",
                        i / components));
     out[i] = static_cast<float>(values[i]);
   }
@@ -189,8 +231,9 @@ std::vector<std::uint32_t> AccessorReader::indices(int index, const std::string&
   if (acc.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
       acc.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
       acc.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
-    fail(fmt::format("accessor {} ({}) must hold unsigned integers, not componentType {}",
-                     index, what, acc.componentType));
+    fail(fmt::format("accessor {} ({}) has componentType {} ({}); indices must be UNSIGNED_BYTE, "
+                     "UNSIGNED_SHORT or UNSIGNED_INT",
+                     index, what, acc.componentType, gltf_component_type_name(acc.componentType)));
   std::vector<double> values = read(index, 1, what);
   return std::vector<std::uint32_t>(values.begin(), values.end());
 }

@@ -38,5 +38,7 @@ struct AccessorReader {
 
 int gltf_component_count(int type);  // TINYGLTF_TYPE_* -> 1..16, 0 if invalid
 int gltf_component_size(int component_type);  // bytes, 0 if invalid
+const char* gltf_type_name(int type);  // "VEC3"
+const char* gltf_component_type_name(int component_type);  // "UNSIGNED_SHORT"
 
 }  // namespace tessera

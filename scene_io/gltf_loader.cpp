@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -14,8 +16,10 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "scene_io/gltf_accessor.h"
+#include "scene_io/gltf_hierarchy.h"
 #include "scene_io/gltf_material.h"
 #include "scene_io/gltf_mesh.h"
+#include "scene_io/gltf_parse.h"
 #include "scene_io/load_error.h"
 
 namespace tessera {
@@ -34,10 +38,17 @@ bool is_supported_gltf_extension(const std::string& name) {
 
 namespace {
 
-std::string one_line(std::string text) {
-  while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.pop_back();
-  std::replace(text.begin(), text.end(), '\n', ' ');
-  return text;
+template <typename Vector>
+bool fits_float(const Vector& values) {
+  return std::all_of(values.begin(), values.end(), [](double x) {
+    return std::isfinite(x) && std::abs(x) <= std::numeric_limits<float>::max();
+  });
+}
+
+bool finite_matrix(const glm::mat4& m) {
+  for (int c = 0; c < 4; ++c)
+    if (!all_finite(m[c])) return false;
+  return true;
 }
 
 class Converter {
@@ -50,7 +61,8 @@ class Converter {
     check_extensions();
     out_.materials = convert_materials(model_, file_, warnings_);
     out_.images = convert_images(model_, file_);
-    for (int root : root_nodes(params.scene)) visit(root, glm::mat4(1.0f));
+    const std::vector<int> parent = check_node_hierarchy(model_, file_);
+    traverse(scene_roots(model_, choose_scene(params.scene), parent, file_));
     for (const Instance& inst : out_.instances)
       for (const TriangleMesh& prim : out_.meshes[inst.mesh].primitives)
         for (const glm::vec3& p : prim.positions)
@@ -71,90 +83,107 @@ class Converter {
         warnings_.push_back(fmt::format("extension {} is not supported and is ignored", ext));
   }
 
-  std::vector<int> root_nodes(const std::string& wanted) {
+  // The scene to load: `wanted` by name, else by index; empty = the default scene, else 0.
+  // -1 when the file has no scenes (then every parentless node is a root).
+  int choose_scene(const std::string& wanted) {
     const auto& scenes = model_.scenes;
-    if (scenes.empty()) {  // no scene: every node that is nobody's child
-      std::vector<bool> is_child(model_.nodes.size(), false);
-      for (const auto& n : model_.nodes)
-        for (int c : n.children)
-          if (c >= 0 && c < static_cast<int>(is_child.size())) is_child[c] = true;
-      std::vector<int> roots;
-      for (std::size_t i = 0; i < is_child.size(); ++i)
-        if (!is_child[i]) roots.push_back(static_cast<int>(i));
+    if (scenes.empty()) {
       if (!wanted.empty()) fail(fmt::format("has no scenes, so scene '{}' cannot be chosen", wanted));
-      return roots;
+      return -1;
     }
     int index = model_.defaultScene >= 0 ? model_.defaultScene : 0;
     if (!wanted.empty()) {
       index = -1;
-      const bool numeric = std::all_of(wanted.begin(), wanted.end(), ::isdigit);
       for (std::size_t i = 0; i < scenes.size() && index < 0; ++i)
         if (scenes[i].name == wanted) index = static_cast<int>(i);
+      const bool numeric = std::all_of(wanted.begin(), wanted.end(), ::isdigit);
       if (index < 0 && numeric && wanted.size() < 9) index = std::stoi(wanted);
-      if (index < 0 || index >= static_cast<int>(scenes.size()))
-        fail(fmt::format("has no scene '{}' (it has {} scenes)", wanted, scenes.size()));
+      if (index < 0 || index >= static_cast<int>(scenes.size())) {
+        std::string names;
+        for (std::size_t i = 0; i < scenes.size(); ++i)
+          names += fmt::format("{}{}{}", i ? ", " : "", i,
+                               scenes[i].name.empty() ? "" : " '" + scenes[i].name + "'");
+        fail(fmt::format("has no scene '{}' (it has {}: {})", wanted,
+                         count_of(scenes.size(), "scene"), names));
+      }
     } else if (index >= static_cast<int>(scenes.size())) {
-      fail(fmt::format("default scene {} does not exist (the file has {} scenes)", index,
-                       scenes.size()));
+      fail(fmt::format("its default scene is {}, but the file has {}", index,
+                       count_of(scenes.size(), "scene")));
     }
     out_.scene_name = scenes[index].name.empty() ? std::to_string(index) : scenes[index].name;
-    return scenes[index].nodes;
+    return index;
+  }
+
+  // Depth first, children in order, without recursion: hierarchies can be deep.
+  void traverse(const std::vector<int>& roots) {
+    std::vector<std::pair<int, glm::mat4>> stack;
+    for (auto r = roots.rbegin(); r != roots.rend(); ++r) stack.emplace_back(*r, glm::mat4(1.0f));
+    while (!stack.empty()) {
+      const auto [index, parent_to_world] = stack.back();
+      stack.pop_back();
+      const tinygltf::Node& node = model_.nodes[index];
+      const glm::mat4 world = parent_to_world * local_transform(node, index);
+      if (!finite_matrix(world))
+        fail(fmt::format("node {} has a world transform (its own composed with its ancestors') "
+                         "beyond the range of 32-bit floats", index));
+      if (node.mesh >= 0) add_instance(node, index, world);
+      if (node.camera >= 0) add_camera(node, index, world);
+      if (auto it = node.extensions.find("KHR_lights_punctual"); it != node.extensions.end())
+        add_light(it->second, index, world);
+      for (auto c = node.children.rbegin(); c != node.children.rend(); ++c) stack.emplace_back(*c, world);
+    }
   }
 
   glm::mat4 local_transform(const tinygltf::Node& node, int index) const {
-    auto finite = [](const std::vector<double>& v) {
-      return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); });
+    auto check = [&](const std::vector<double>& v, const char* what, std::size_t size) {
+      if (!v.empty() && v.size() != size)
+        fail(fmt::format("node {} has a {} of {} numbers; it needs {}", index, what, v.size(), size));
+      if (!fits_float(v))
+        fail(fmt::format("node {} has a {} beyond the range of 32-bit floats", index, what));
     };
     if (!node.matrix.empty()) {
-      if (node.matrix.size() != 16 || !finite(node.matrix))
-        fail(fmt::format("node {} has an invalid matrix", index));
-      glm::dmat4 m = glm::make_mat4(node.matrix.data());  // column-major, as glTF stores it
-      return glm::mat4(m);
+      check(node.matrix, "matrix", 16);
+      return glm::mat4(glm::make_mat4(node.matrix.data()));  // column-major, as glTF stores it
     }
+    check(node.translation, "translation", 3);
+    check(node.rotation, "rotation", 4);
+    check(node.scale, "scale", 3);
     glm::dvec3 t(0.0), s(1.0);
     glm::dquat r(1.0, 0.0, 0.0, 0.0);
-    const bool valid = (node.translation.empty() || node.translation.size() == 3) &&
-                       (node.scale.empty() || node.scale.size() == 3) &&
-                       (node.rotation.empty() || node.rotation.size() == 4) &&
-                       finite(node.translation) && finite(node.scale) && finite(node.rotation);
-    if (!valid) fail(fmt::format("node {} has an invalid translation, rotation or scale", index));
     if (!node.translation.empty()) t = glm::make_vec3(node.translation.data());
     if (!node.scale.empty()) s = glm::make_vec3(node.scale.data());
-    if (!node.rotation.empty())  // glTF stores x, y, z, w
-      r = glm::normalize(glm::dquat(node.rotation[3], node.rotation[0], node.rotation[1],
-                                    node.rotation[2]));
+    if (!node.rotation.empty()) {  // glTF stores x, y, z, w
+      r = glm::dquat(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);
+      if (!(glm::length(r) > 1e-6))
+        fail(fmt::format("node {} has a rotation quaternion of length {}; it must be a unit quaternion",
+                         index, glm::length(r)));
+      r = glm::normalize(r);
+    }
     glm::dmat4 m = glm::mat4_cast(r);
     m[0] *= s.x;
     m[1] *= s.y;
     m[2] *= s.z;
     m[3] = glm::dvec4(t, 1.0);
-    return glm::mat4(m);
-  }
-
-  void visit(int index, const glm::mat4& parent) {
-    if (index < 0 || index >= static_cast<int>(model_.nodes.size()))
-      fail(fmt::format("refers to node {}, but the file has {} nodes", index, model_.nodes.size()));
-    if (std::find(path_.begin(), path_.end(), index) != path_.end())
-      fail(fmt::format("node {} is its own ancestor (the node hierarchy has a cycle)", index));
-    path_.push_back(index);
-    const tinygltf::Node& node = model_.nodes[index];
-    const glm::mat4 world = parent * local_transform(node, index);
-    if (node.mesh >= 0) add_instance(node, index, world);
-    if (node.camera >= 0) add_camera(node, index, world);
-    if (auto it = node.extensions.find("KHR_lights_punctual"); it != node.extensions.end())
-      add_light(it->second, index, world);
-    for (int child : node.children) visit(child, world);
-    path_.pop_back();
+    const glm::mat4 local(m);
+    if (!finite_matrix(local))
+      fail(fmt::format("node {} has a transform beyond the range of 32-bit floats", index));
+    return local;
   }
 
   void add_instance(const tinygltf::Node& node, int index, const glm::mat4& world) {
     if (node.mesh >= static_cast<int>(model_.meshes.size()))
-      fail(fmt::format("node {} refers to mesh {}, but the file has {} meshes", index, node.mesh,
-                       model_.meshes.size()));
-    auto [it, inserted] = mesh_slot_.try_emplace(node.mesh, static_cast<int>(out_.meshes.size()));
-    if (inserted) out_.meshes.push_back(convert_mesh(node.mesh));
-    if (out_.meshes[it->second].primitives.empty()) return;
-    out_.instances.push_back({it->second, world, node.name});
+      fail(fmt::format("node {} refers to mesh {}, but the file has {}", index, node.mesh,
+                       count_of(model_.meshes.size(), "mesh")));
+    // A mesh with no triangles (only points or lines) is neither stored nor placed.
+    auto [it, inserted] = mesh_slot_.try_emplace(node.mesh, -1);
+    if (inserted) {
+      Mesh mesh = convert_mesh(node.mesh);
+      if (!mesh.primitives.empty()) {
+        it->second = static_cast<int>(out_.meshes.size());
+        out_.meshes.push_back(std::move(mesh));
+      }
+    }
+    if (it->second >= 0) out_.instances.push_back({it->second, world, node.name});
   }
 
   Mesh convert_mesh(int index) {
@@ -166,8 +195,8 @@ class Converter {
       auto prim = convert_primitive(reader_, src.primitives[p], what, warnings_);
       if (!prim) continue;
       if (prim->material >= static_cast<int>(out_.materials.size()))
-        fail(fmt::format("{} refers to material {}, but the file has {} materials", what,
-                         prim->material, out_.materials.size()));
+        fail(fmt::format("{} refers to material {}, but the file has {}", what, prim->material,
+                         count_of(out_.materials.size(), "material")));
       if (!prim->indices.empty()) mesh.primitives.push_back(std::move(*prim));
     }
     return mesh;
@@ -175,8 +204,8 @@ class Converter {
 
   void add_camera(const tinygltf::Node& node, int index, const glm::mat4& world) {
     if (node.camera >= static_cast<int>(model_.cameras.size()))
-      fail(fmt::format("node {} refers to camera {}, but the file has {} cameras", index,
-                       node.camera, model_.cameras.size()));
+      fail(fmt::format("node {} refers to camera {}, but the file has {}", index, node.camera,
+                       count_of(model_.cameras.size(), "camera")));
     const tinygltf::Camera& src = model_.cameras[node.camera];
     Camera cam;
     cam.name = !src.name.empty() ? src.name : !node.name.empty() ? node.name
@@ -203,7 +232,8 @@ class Converter {
       cam.znear = static_cast<float>(src.perspective.znear);
       cam.zfar = static_cast<float>(src.perspective.zfar);
       if (!(cam.yfov > 0 && cam.yfov < 3.1415926f))
-        fail(fmt::format("camera {} has yfov {} outside (0, pi)", node.camera, src.perspective.yfov));
+        fail(fmt::format("camera {} has yfov {}; a perspective camera needs 0 < yfov < pi radians",
+                         node.camera, src.perspective.yfov));
       if (!(cam.aspect_ratio >= 0 && std::isfinite(cam.aspect_ratio)))
         fail(fmt::format("camera {} has an invalid aspectRatio", node.camera));
     } else {
@@ -215,15 +245,16 @@ class Converter {
   void add_light(const tinygltf::Value& ext, int index, const glm::mat4& world) {
     const int light = ext.Has("light") ? ext.Get("light").GetNumberAsInt() : -1;
     if (light < 0 || light >= static_cast<int>(model_.lights.size()))
-      fail(fmt::format("node {} refers to light {}, but the file has {} lights", index, light,
-                       model_.lights.size()));
+      fail(fmt::format("node {} refers to light {}, but the file has {}", index, light,
+                       count_of(model_.lights.size(), "light")));
     const tinygltf::Light& src = model_.lights[light];
     PunctualLight l;
     l.name = src.name.empty() ? fmt::format("light {}", light) : src.name;
     if (src.type == "point") l.type = PunctualLight::Type::Point;
     else if (src.type == "spot") l.type = PunctualLight::Type::Spot;
     else if (src.type == "directional") l.type = PunctualLight::Type::Directional;
-    else fail(fmt::format("light {} has unknown type '{}'", light, src.type));
+    else fail(fmt::format("light {} has unknown type '{}' (expected 'directional', 'point' or 'spot')",
+                          light, src.type));
     if (src.color.size() == 3) l.color = {src.color[0], src.color[1], src.color[2]};
     l.intensity = static_cast<float>(src.intensity);
     l.range = static_cast<float>(src.range);
@@ -243,7 +274,6 @@ class Converter {
   std::vector<std::string>& warnings_;
   AccessorReader reader_;
   std::map<int, int> mesh_slot_;  // glTF mesh index -> index in out_.meshes
-  std::vector<int> path_;  // nodes from the root to the current one
 };
 
 std::string directory_of(const std::string& path) {
@@ -264,21 +294,7 @@ void deduplicate(std::vector<std::string>& warnings) {
 GltfLoadResult load_gltf_from_memory(const std::vector<std::uint8_t>& bytes,
                                      const std::string& display_name, const std::string& base_dir,
                                      const GltfLoadParams& params) {
-  if (bytes.empty()) throw SceneLoadError(display_name, "file is empty");
-  tinygltf::TinyGLTF parser;
-  tinygltf::Model model;
-  std::string err, warn;
-  const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
-  const bool ok =
-      binary ? parser.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(),
-                                           static_cast<unsigned>(bytes.size()), base_dir)
-             : parser.LoadASCIIFromString(&model, &err, &warn,
-                                          reinterpret_cast<const char*>(bytes.data()),
-                                          static_cast<unsigned>(bytes.size()), base_dir);
-  if (!ok) throw SceneLoadError(display_name, one_line(err.empty() ? "could not be parsed" : err));
-  if (model.asset.version.rfind("2.", 0) != 0)
-    throw SceneLoadError(display_name, fmt::format("is glTF version '{}'; tessera reads 2.x",
-                                                   model.asset.version));
+  const tinygltf::Model model = parse_gltf(bytes, display_name, base_dir);
   GltfLoadResult result;
   result.scene.source_path = display_name;
   Converter(model, display_name, result).run(params);
@@ -287,6 +303,8 @@ GltfLoadResult load_gltf_from_memory(const std::vector<std::uint8_t>& bytes,
 }
 
 GltfLoadResult load_gltf(const std::string& path, const GltfLoadParams& params) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw SceneLoadError(path, "is a directory, not a glTF file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw SceneLoadError(path, std::string("cannot be opened: ") + std::strerror(errno));
   std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)),

@@ -33,21 +33,21 @@ TextureRef texture_ref(const tinygltf::Model& model, const std::string& file, in
   TextureRef ref;
   if (index < 0) return ref;
   if (index >= static_cast<int>(model.textures.size()))
-    throw SceneLoadError(file, fmt::format("{} refers to texture {}, but the file has {} textures",
-                                           what, index, model.textures.size()));
+    throw SceneLoadError(file, fmt::format("{} refers to texture {}, but the file has {}", what,
+                                           index, count_of(model.textures.size(), "texture")));
   const tinygltf::Texture& tex = model.textures[index];
   if (tex.source < 0) {
     warnings.push_back(fmt::format("texture {} has no image tessera can decode; ignored", index));
     return ref;
   }
   if (tex.source >= static_cast<int>(model.images.size()))
-    throw SceneLoadError(file, fmt::format("texture {} refers to image {}, but the file has {} images",
-                                           index, tex.source, model.images.size()));
+    throw SceneLoadError(file, fmt::format("texture {} refers to image {}, but the file has {}",
+                                           index, tex.source, count_of(model.images.size(), "image")));
   ref.image = tex.source;
   ref.texcoord = texcoord;
   if (tex.sampler >= static_cast<int>(model.samplers.size()))
-    throw SceneLoadError(file, fmt::format("texture {} refers to sampler {}, but the file has {} samplers",
-                                           index, tex.sampler, model.samplers.size()));
+    throw SceneLoadError(file, fmt::format("texture {} refers to sampler {}, but the file has {}",
+                                           index, tex.sampler, count_of(model.samplers.size(), "sampler")));
   if (tex.sampler >= 0) {
     const tinygltf::Sampler& s = model.samplers[tex.sampler];
     ref.wrap_s = wrap_mode(s.wrapS);

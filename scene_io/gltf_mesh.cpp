@@ -55,7 +55,8 @@ std::optional<TriangleMesh> convert_primitive(const AccessorReader& reader,
     return std::nullopt;
   }
   if (mode > TINYGLTF_MODE_TRIANGLE_FAN)
-    throw SceneLoadError(reader.file, fmt::format("{} has unknown mode {}", what, mode));
+    throw SceneLoadError(reader.file, fmt::format("{} has unknown mode {} (glTF modes are 0 to 6)",
+                                                  what, mode));
 
   auto attribute = [&](const char* name) {
     auto it = prim.attributes.find(name);
@@ -68,20 +69,22 @@ std::optional<TriangleMesh> convert_primitive(const AccessorReader& reader,
   TriangleMesh mesh;
   mesh.positions = to_vectors<glm::vec3, 3>(reader.floats(position, 3, "POSITION of " + what));
   const std::size_t n = mesh.positions.size();
-  auto sized = [&](auto&& values, const char* name) {
+  auto sized = [&](auto&& values, int a, const char* name) {
     if (values.size() != n)
-      throw SceneLoadError(reader.file, fmt::format("{}: {} has {} elements but POSITION has {}",
-                                                    what, name, values.size(), n));
+      throw SceneLoadError(reader.file,
+                           fmt::format("accessor {} ({} of {}) has {} elements, but POSITION "
+                                       "(accessor {}) has {}",
+                                       a, name, what, values.size(), position, n));
     return std::move(values);
   };
   if (int a = attribute("NORMAL"); a >= 0)
-    mesh.normals = sized(to_vectors<glm::vec3, 3>(reader.floats(a, 3, "NORMAL of " + what)), "NORMAL");
+    mesh.normals = sized(to_vectors<glm::vec3, 3>(reader.floats(a, 3, "NORMAL of " + what)), a, "NORMAL");
   if (int a = attribute("TANGENT"); a >= 0)
-    mesh.tangents = sized(to_vectors<glm::vec4, 4>(reader.floats(a, 4, "TANGENT of " + what)), "TANGENT");
+    mesh.tangents = sized(to_vectors<glm::vec4, 4>(reader.floats(a, 4, "TANGENT of " + what)), a, "TANGENT");
   if (int a = attribute("TEXCOORD_0"); a >= 0)
-    mesh.texcoords0 = sized(to_vectors<glm::vec2, 2>(reader.floats(a, 2, "TEXCOORD_0 of " + what)), "TEXCOORD_0");
+    mesh.texcoords0 = sized(to_vectors<glm::vec2, 2>(reader.floats(a, 2, "TEXCOORD_0 of " + what)), a, "TEXCOORD_0");
   if (int a = attribute("TEXCOORD_1"); a >= 0)
-    mesh.texcoords1 = sized(to_vectors<glm::vec2, 2>(reader.floats(a, 2, "TEXCOORD_1 of " + what)), "TEXCOORD_1");
+    mesh.texcoords1 = sized(to_vectors<glm::vec2, 2>(reader.floats(a, 2, "TEXCOORD_1 of " + what)), a, "TEXCOORD_1");
   if (int a = attribute("COLOR_0"); a >= 0) {
     const int components = gltf_component_count(reader.accessor(a, "COLOR_0 of " + what).type);
     if (components == 3) {
@@ -90,7 +93,7 @@ std::optional<TriangleMesh> convert_primitive(const AccessorReader& reader,
     } else {
       mesh.colors = to_vectors<glm::vec4, 4>(reader.floats(a, 4, "COLOR_0 of " + what));
     }
-    sized(std::vector<glm::vec4>(mesh.colors), "COLOR_0");
+    sized(std::vector<glm::vec4>(mesh.colors), a, "COLOR_0");
   }
 
   std::vector<std::uint32_t> idx;
@@ -98,9 +101,10 @@ std::optional<TriangleMesh> convert_primitive(const AccessorReader& reader,
     idx = reader.indices(prim.indices, "indices of " + what);
     for (std::size_t i = 0; i < idx.size(); ++i)
       if (idx[i] >= n)
-        throw SceneLoadError(reader.file, fmt::format("{}: index {} at position {} is out of "
-                                                      "range (the primitive has {} vertices)",
-                                                      what, idx[i], i, n));
+        throw SceneLoadError(reader.file, fmt::format("accessor {} (indices of {}) holds index {} "
+                                                      "at element {}, but the primitive has {}",
+                                                      prim.indices, what, idx[i], i,
+                                                      count_of(n, "vertex", "vertices")));
   } else {
     idx.resize(n);
     for (std::size_t i = 0; i < n; ++i) idx[i] = static_cast<std::uint32_t>(i);

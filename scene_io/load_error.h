@@ -1,6 +1,7 @@
 // The one exception a scene loader throws: the file and what is wrong with it.
 #pragma once
 
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 
@@ -16,5 +17,15 @@ class SceneLoadError : public std::runtime_error {
  private:
   std::string file_, problem_;
 };
+
+// "no nodes", "1 node", "3 meshes": for messages such as "the file has 1 node".
+inline std::string count_of(std::size_t n, const std::string& noun, std::string plural = "") {
+  if (plural.empty()) {
+    const bool es = noun.size() > 1 && (noun.back() == 's' || noun.compare(noun.size() - 2, 2, "sh") == 0);
+    plural = noun + (es ? "es" : "s");
+  }
+  if (n == 0) return "no " + plural;
+  return std::to_string(n) + " " + (n == 1 ? noun : plural);
+}
 
 }  // namespace tessera

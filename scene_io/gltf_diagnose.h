@@ -1,0 +1,32 @@
+// When tinygltf refuses a file its message rarely says which buffer, view, image or camera
+// is at fault (and sometimes spans several lines). This looks at the JSON again, in the
+// order tinygltf reads it, and names the first problem it finds.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace tessera {
+
+struct GltfDiagnoseInput {
+  std::string_view json;  // the glTF JSON text
+  bool binary = false;  // from a .glb
+  std::size_t bin_chunk_size = 0;  // .glb BIN chunk bytes
+  std::string base_dir;  // where external files are looked up
+};
+
+// One line without the file name, or nullopt when nothing specific is found.
+std::optional<std::string> diagnose_gltf_json(const GltfDiagnoseInput& in);
+
+// tinygltf's (possibly multi-line) error text as one line, for when the diagnosis finds nothing.
+std::string reword_tinygltf_error(const std::string& err, std::string_view json);
+
+// The path of an external resource: base_dir joined with the percent-decoded uri.
+std::string resolve_gltf_uri(const std::string& base_dir, const std::string& uri);
+
+// Why `path` cannot be read, or empty when it can.
+std::string unreadable_reason(const std::string& path);
+
+}  // namespace tessera

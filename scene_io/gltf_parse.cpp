@@ -1,0 +1,105 @@
+#include "scene_io/gltf_parse.h"
+
+#include <fstream>
+#include <iterator>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "scene_io/gltf_container.h"
+#include "scene_io/gltf_diagnose.h"
+#include "scene_io/load_error.h"
+
+namespace tessera {
+namespace {
+
+// What tinygltf's callbacks saw, for the error message after it gives up.
+struct ParseContext {
+  std::string image_error;  // the first image that could not be decoded
+};
+
+bool file_exists(const std::string& path, void*) { return unreadable_reason(path).empty(); }
+
+std::string expand_file_path(const std::string& path, void*) { return path; }  // no ~ or $VAR
+
+bool read_whole_file(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*) {
+  std::ifstream in(path, std::ios::binary);
+  if (in) out->assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  if (in && !in.bad()) return true;
+  if (err) *err += path + ": cannot be read\n";
+  return false;
+}
+
+bool write_whole_file(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+  if (err) *err += "tessera never writes glTF files\n";
+  return false;
+}
+
+std::string image_source(const tinygltf::Image& image) {
+  if (!image.uri.empty()) return image.uri.size() > 60 ? image.uri.substr(0, 57) + "..." : image.uri;
+  if (image.bufferView >= 0) return fmt::format("bufferView {}", image.bufferView);
+  return "data URI";
+}
+
+// tinygltf's own stb_image decoder, with a message that names the image.
+bool load_image(tinygltf::Image* image, const int index, std::string* err, std::string* warn,
+                int width, int height, const unsigned char* bytes, int size, void* user) {
+  std::string ignored;
+  if (tinygltf::LoadImageData(image, index, &ignored, warn, width, height, bytes, size, nullptr))
+    return true;
+  auto& ctx = *static_cast<ParseContext*>(user);
+  if (ctx.image_error.empty())
+    ctx.image_error = fmt::format("image {} ({}) could not be decoded: it is not a PNG or JPEG image",
+                                  index, image_source(*image));
+  if (err) *err += ctx.image_error + "\n";
+  return false;
+}
+
+// tinygltf only warns about an external image it cannot open; tessera refuses the file.
+void check_external_images(const tinygltf::Model& model, const std::string& name,
+                           const std::string& base_dir) {
+  for (std::size_t i = 0; i < model.images.size(); ++i) {
+    const tinygltf::Image& image = model.images[i];
+    if (!image.image.empty() || image.uri.empty() || image.bufferView >= 0) continue;
+    std::string why = unreadable_reason(resolve_gltf_uri(base_dir, image.uri));
+    if (why.empty()) why = "it is empty";
+    throw SceneLoadError(name, fmt::format("image {} refers to {}, which cannot be opened: {}", i,
+                                           image_source(image), why));
+  }
+}
+
+}  // namespace
+
+tinygltf::Model parse_gltf(const std::vector<std::uint8_t>& bytes, const std::string& name,
+                           const std::string& base_dir) {
+  const GltfContainer container = check_gltf_container(bytes, name);
+  if (bytes.size() > std::numeric_limits<unsigned>::max())
+    throw SceneLoadError(name, "is larger than 4 GiB, more than tinygltf can read");
+  ParseContext ctx;
+  tinygltf::TinyGLTF parser;
+  parser.SetFsCallbacks({&file_exists, &expand_file_path, &read_whole_file, &write_whole_file, &ctx});
+  parser.SetImageLoader(&load_image, &ctx);
+  tinygltf::Model model;
+  std::string err, warn;
+  const auto size = static_cast<unsigned>(bytes.size());
+  const bool ok =
+      container.binary
+          ? parser.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), size, base_dir)
+          : parser.LoadASCIIFromString(&model, &err, &warn,
+                                       reinterpret_cast<const char*>(bytes.data()), size, base_dir);
+  if (!ok) {
+    if (!ctx.image_error.empty()) throw SceneLoadError(name, ctx.image_error);
+    if (err.rfind("[json.exception.", 0) != 0)
+      if (auto problem = diagnose_gltf_json({container.json, container.binary,
+                                             container.bin_chunk_size, base_dir}))
+        throw SceneLoadError(name, *problem);
+    throw SceneLoadError(name, reword_tinygltf_error(err, container.json));
+  }
+  if (model.asset.version.rfind("2.", 0) != 0)
+    throw SceneLoadError(name, fmt::format("is glTF version '{}'; tessera reads version 2.x",
+                                           model.asset.version));
+  check_external_images(model, name, base_dir);
+  return model;
+}
+
+}  // namespace tessera
