@@ -77,6 +77,7 @@ Material diffuse(glm::vec3 albedo) {
   Material m;
   m.base_color_factor = glm::vec4(albedo, 1.0f);
   m.metallic_factor = 0.0f;
+  m.specular_factor = 0.0f;  // KHR_materials_specular 0: no specular layer, pure Lambert
   return m;
 }
 

@@ -18,7 +18,7 @@ int add_material(SceneDescription& scene, const Material& material);
 // Adds the mesh as its own glTF-like mesh placed once (or at each transform given).
 int add_mesh(SceneDescription& scene, TriangleMesh mesh, const std::vector<glm::mat4>& placements = {glm::mat4(1.0f)});
 
-Material diffuse(glm::vec3 albedo);
+Material diffuse(glm::vec3 albedo);  // Lambertian: a glTF dielectric with specular 0
 Material emitter(glm::vec3 radiance);  // black diffuse that emits `radiance`
 
 // A perspective camera at `eye` looking at `target` with +Y up.

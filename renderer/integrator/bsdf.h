@@ -1,16 +1,30 @@
-// The BSDF at a shading point, in the local frame of the shading normal (z up).
-// A plain struct with inline functions: no virtual call per ray. For now it is Lambertian
-// reflection; the glTF microfacet model extends this struct, not the integrator.
+// The glTF 2.0 BSDF (specification Appendix B and the KHR_materials_* extensions) at one
+// shading point, in the local frame of the shading normal with the outgoing direction wo
+// always in the upper hemisphere (the integrator flips the frame to the side the ray came
+// from, and passes the matching relative index of refraction).
+//
+//   metal      = D G / (4 |cos_o cos_i|) * Schlick(baseColor, 1, wo.h)
+//   dielectric = (1 - s max(F)) * [(1 - T) baseColor / pi + T baseColor btdf] + s F * D G / (4 |cos cos|)
+//   material   = mix(dielectric, metal, metallic)
+//   coated     = (1 - c Fc(n.wo)) * material + c Fc(n.wo) * D_c G_c / (4 |cos cos|)
+// F is Schlick's with f0 = min(((ior-1)/(ior+1))^2 specularColor, 1) scaled by s = specular;
+// a refracting (volume) dielectric uses the exact Fresnel term instead, so glass conserves
+// energy and shows total internal reflection. btdf is a rough refraction (Walter et al.
+// 2007) when the material has a volume, or a straight pass through the surface when it is
+// thin-walled. Directions are sampled per lobe (cosine, GGX visible normals) and combined as
+// a mixture whose pdf is the weighted sum of the lobes' pdfs. Plain struct, no virtual calls.
 #pragma once
 
-#include "renderer/math.h"
+#include "renderer/integrator/materials.h"
+#include "renderer/integrator/microfacet.h"
 
 namespace tessera {
 
 struct BsdfSample {
   vec3 wi{0.0f};  // local frame
-  vec3 f{0.0f};  // BSDF value
-  float pdf = 0.0f;  // solid angle
+  vec3 f{0.0f};  // BSDF value (whole mixture)
+  float pdf = 0.0f;  // solid angle (whole mixture)
+  bool transmitted = false;  // wi is below the surface
 };
 
 // Cosine-weighted direction on the upper hemisphere (Malley's method).
@@ -19,24 +33,36 @@ inline vec3 sample_cosine_hemisphere(const vec2& u) {
   return {d.x, d.y, std::sqrt(std::fmax(0.0f, 1.0f - d.x * d.x - d.y * d.y))};
 }
 
-struct Bsdf {
-  vec3 albedo{0.0f};
+class GltfBsdf {
+ public:
+  enum Lobe { kDiffuse, kSpecular, kTransmission, kClearcoat, kLobeCount };
 
-  // wo, wi in the local frame; reflection only, both in the upper hemisphere.
-  vec3 eval(const vec3& wo, const vec3& wi) const {
-    return wo.z > 0.0f && wi.z > 0.0f ? albedo * kInvPi : vec3(0.0f);
-  }
-  float pdf(const vec3& wo, const vec3& wi) const {
-    return wo.z > 0.0f && wi.z > 0.0f ? wi.z * kInvPi : 0.0f;
-  }
-  bool sample(const vec3& wo, const vec2& u, BsdfSample& s) const {
-    if (wo.z <= 0.0f) return false;
-    s.wi = sample_cosine_hemisphere(u);
-    s.pdf = s.wi.z * kInvPi;
-    if (s.pdf <= 0.0f) return false;
-    s.f = albedo * kInvPi;
-    return true;
-  }
+  // `eta` = index of refraction beyond the surface / index on the side of wo.
+  GltfBsdf(const ShadingPoint& sp, const vec3& wo, float eta);
+
+  vec3 eval(const vec3& wo, const vec3& wi) const;
+  float pdf(const vec3& wo, const vec3& wi) const;
+  bool sample(const vec3& wo, float u_lobe, const vec2& u, BsdfSample& s) const;
+
+  bool has_transmission() const { return weight_[kTransmission] > 0.0f; }
+  float lobe_probability(Lobe lobe) const { return weight_[lobe]; }
+
+ private:
+  vec3 dielectric_fresnel(float cos_oh) const;  // s * F for the dielectric layer
+  float coat_fresnel(float cos_o) const;
+  float lobe_pdf(int lobe, const vec3& wo, const vec3& wi) const;
+  vec3 reflection(const vec3& wo, const vec3& wi) const;  // diffuse + specular, below the coat
+  vec3 transmission(const vec3& wo, const vec3& wi) const;
+
+  vec3 base_;
+  float metallic_, transmission_, eta_;
+  bool refracts_;  // a volume: refraction and exact Fresnel
+  vec3 f0_;  // dielectric normal-incidence reflectance (specular colour applied)
+  float specular_;
+  float clearcoat_;
+  GgxDistribution ggx_, coat_ggx_;
+  float coat_scale_;  // 1 - clearcoat * Fc(wo): what passes the coat, for wo
+  float weight_[kLobeCount];  // lobe selection probabilities for this wo, summing to 1
 };
 
 }  // namespace tessera

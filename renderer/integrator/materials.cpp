@@ -10,10 +10,13 @@ MaterialTable::MaterialTable(const SceneDescription& scene) : materials_(scene.m
       cache[ref.image] = make_texture_image(scene.images[ref.image], enc);
   };
   for (const Material& m : materials_) {
-    need(m.base_color_texture, srgb_, ColorEncoding::SRGB);
-    need(m.emissive_texture, srgb_, ColorEncoding::SRGB);
-    need(m.metallic_roughness_texture, linear_, ColorEncoding::Linear);
-    need(m.normal_texture, linear_, ColorEncoding::Linear);
+    for (const TextureRef* srgb : {&m.base_color_texture, &m.emissive_texture, &m.specular_color_texture,
+                                   &m.sheen_color_texture})
+      need(*srgb, srgb_, ColorEncoding::SRGB);
+    for (const TextureRef* linear :
+         {&m.metallic_roughness_texture, &m.normal_texture, &m.transmission_texture, &m.thickness_texture,
+          &m.specular_texture, &m.clearcoat_texture, &m.clearcoat_roughness_texture, &m.sheen_roughness_texture})
+      need(*linear, linear_, ColorEncoding::Linear);
   }
 }
 
@@ -27,17 +30,51 @@ vec4 MaterialTable::lookup(const TextureRef& ref, const std::vector<TextureImage
   return sample_texture(images[ref.image], ref, hit.uv[ref.texcoord]);
 }
 
+// The tangent-space normal map applied to the interpolated frame (glTF: RGB in [0,1] maps
+// to [-1,1], scaled in x and y by normalTexture.scale; +Y up in UV space, so the bitangent
+// is cross(normal, tangent) * tangent.w).
+vec3 MaterialTable::perturbed_normal(const Material& m, const SurfaceHit& hit) const {
+  const vec3 t_raw = vec3(hit.tangent);
+  const vec3 t = t_raw - hit.ns * glm::dot(hit.ns, t_raw);
+  const float len = glm::length(t);
+  if (!(len > 1e-8f)) return vec3(0.0f);
+  const vec3 tangent = t / len;
+  const vec3 bitangent = glm::cross(hit.ns, tangent) * (hit.tangent.w < 0.0f ? -1.0f : 1.0f);
+  vec3 n = vec3(lookup(m.normal_texture, linear_, hit)) * 2.0f - 1.0f;
+  n.x *= m.normal_scale;
+  n.y *= m.normal_scale;
+  const vec3 world = n.x * tangent + n.y * bitangent + n.z * hit.ns;
+  const float wl = glm::length(world);
+  return wl > 0.0f && std::isfinite(wl) ? world / wl : vec3(0.0f);
+}
+
 ShadingPoint MaterialTable::evaluate(const SurfaceHit& hit) const {
   const Material& m = material(hit.material);
   ShadingPoint sp;
   const vec4 base = m.base_color_factor * lookup(m.base_color_texture, srgb_, hit) * hit.color;
   sp.base_color = glm::clamp(vec3(base), 0.0f, 1.0f);
-  sp.alpha = base.a;
+  sp.alpha = glm::clamp(base.a, 0.0f, 1.0f);
   sp.emission = m.emissive_factor * m.emissive_strength * vec3(lookup(m.emissive_texture, srgb_, hit));
+  sp.double_sided = m.double_sided;
+  sp.unlit = m.unlit;
+  if (m.unlit) return sp;
   const vec4 mr = lookup(m.metallic_roughness_texture, linear_, hit);
   sp.metallic = glm::clamp(m.metallic_factor * mr.b, 0.0f, 1.0f);
   sp.roughness = glm::clamp(m.roughness_factor * mr.g, 0.0f, 1.0f);
-  sp.double_sided = m.double_sided;
+  if (m.normal_texture.present() && hit.tangent != vec4(0.0f)) sp.normal = perturbed_normal(m, hit);
+  sp.transmission = glm::clamp(m.transmission_factor * lookup(m.transmission_texture, linear_, hit).r, 0.0f, 1.0f);
+  sp.ior = m.ior;
+  const float thickness = m.thickness_factor * lookup(m.thickness_texture, linear_, hit).g;
+  sp.thin_walled = !(thickness > 0.0f);
+  if (!sp.thin_walled && std::isfinite(m.attenuation_distance) && m.attenuation_distance > 0.0f)
+    sp.absorption = -glm::log(glm::max(m.attenuation_color, vec3(1e-6f))) / m.attenuation_distance;
+  sp.specular = glm::clamp(m.specular_factor * lookup(m.specular_texture, linear_, hit).a, 0.0f, 1.0f);
+  sp.specular_color = m.specular_color_factor * vec3(lookup(m.specular_color_texture, srgb_, hit));
+  sp.clearcoat = glm::clamp(m.clearcoat_factor * lookup(m.clearcoat_texture, linear_, hit).r, 0.0f, 1.0f);
+  sp.clearcoat_roughness =
+      glm::clamp(m.clearcoat_roughness_factor * lookup(m.clearcoat_roughness_texture, linear_, hit).g, 0.0f, 1.0f);
+  sp.sheen_color = glm::clamp(m.sheen_color_factor * vec3(lookup(m.sheen_color_texture, srgb_, hit)), 0.0f, 1.0f);
+  sp.sheen_roughness = glm::clamp(m.sheen_roughness_factor * lookup(m.sheen_roughness_texture, linear_, hit).a, 0.0f, 1.0f);
   return sp;
 }
 

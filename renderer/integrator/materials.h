@@ -10,13 +10,23 @@
 
 namespace tessera {
 
-// A material evaluated at one point.
+// A material evaluated at one point: every parameter of the glTF BSDF, textures applied.
 struct ShadingPoint {
   vec3 base_color{1.0f};  // linear
   float alpha = 1.0f;
   vec3 emission{0.0f};  // radiance leaving the surface
   float metallic = 0.0f, roughness = 1.0f;
   bool double_sided = false;
+  vec3 normal{0.0f};  // shading normal after the normal map (world); zero = no normal map
+  float transmission = 0.0f, ior = 1.5f;
+  bool thin_walled = true;
+  vec3 absorption{0.0f};  // Beer-Lambert coefficient inside the volume, per scene unit
+  float specular = 1.0f;
+  vec3 specular_color{1.0f};
+  float clearcoat = 0.0f, clearcoat_roughness = 0.0f;
+  vec3 sheen_color{0.0f};
+  float sheen_roughness = 0.0f;
+  bool unlit = false;
 };
 
 class MaterialTable {
@@ -28,6 +38,7 @@ class MaterialTable {
 
  private:
   vec4 lookup(const TextureRef& ref, const std::vector<TextureImage>& images, const SurfaceHit& hit) const;
+  vec3 perturbed_normal(const Material& m, const SurfaceHit& hit) const;
 
   std::vector<Material> materials_;
   Material default_material_;  // the glTF default: white, metallic 1, roughness 1

@@ -15,9 +15,18 @@ inline float power_heuristic(float pdf_a, float pdf_b) {
 struct ShadingContext {
   const SurfaceHit& s;
   const Frame& frame;
-  const Bsdf& bsdf;
+  const GltfBsdf& bsdf;
   vec3 wo_local;
-  vec3 origin;  // offset ray origin for rays leaving this point
+
+  // Ray origin for leaving towards wi: offset to the side of the surface wi goes to.
+  vec3 origin_towards(const vec3& wi) const { return offset_ray_origin(s.p, glm::dot(wi, s.ng) >= 0.0f ? s.ng : -s.ng); }
+  // A light direction the BSDF can scatter into, with its |cosine| in the shading frame.
+  bool usable(const vec3& wi, vec3& wi_local) const {
+    const bool above = glm::dot(wi, s.ng) > 0.0f;
+    if (!above && !bsdf.has_transmission()) return false;
+    wi_local = frame.to_local(wi);
+    return (wi_local.z > 0.0f) == above;  // shading and true geometry must agree on the side
+  }
 };
 
 // Direct light from every punctual light (delta lights: no MIS partner).
@@ -25,13 +34,13 @@ vec3 punctual_light_contribution(const RenderScene& scene, const ShadingContext&
   vec3 sum(0.0f);
   for (const PunctualLight& light : scene.description.lights) {
     LightSample ls;
-    if (!sample_punctual_light(light, c.s.p, ls) || glm::dot(ls.wi, c.s.ng) <= 0.0f) continue;
-    const vec3 wi_local = c.frame.to_local(ls.wi);
+    vec3 wi_local;
+    if (!sample_punctual_light(light, c.s.p, ls) || !c.usable(ls.wi, wi_local)) continue;
     const vec3 f = c.bsdf.eval(c.wo_local, wi_local);
     if (f == vec3(0.0f)) continue;
     ++counters.rays;
-    if (scene.geometry->occluded(c.origin, ls.wi, ls.distance * (1.0f - 1e-4f))) continue;
-    sum += f * ls.irradiance * wi_local.z;
+    if (scene.geometry->occluded(c.origin_towards(ls.wi), ls.wi, ls.distance * (1.0f - 1e-4f))) continue;
+    sum += f * ls.irradiance * std::fabs(wi_local.z);
   }
   return sum;
 }
@@ -42,14 +51,14 @@ vec3 area_light_contribution(const RenderScene& scene, const ShadingContext& c, 
   const float u_select = rng.next();
   const vec2 u_point = rng.next2();
   AreaLightSample ls;
-  if (!scene.area_lights->sample(c.s.p, u_select, u_point, ls) || glm::dot(ls.wi, c.s.ng) <= 0.0f) return vec3(0.0f);
-  const vec3 wi_local = c.frame.to_local(ls.wi);
+  vec3 wi_local;
+  if (!scene.area_lights->sample(c.s.p, u_select, u_point, ls) || !c.usable(ls.wi, wi_local)) return vec3(0.0f);
   const vec3 f = c.bsdf.eval(c.wo_local, wi_local);
   if (f == vec3(0.0f) || ls.radiance == vec3(0.0f)) return vec3(0.0f);
   ++counters.rays;
-  if (scene.geometry->occluded(c.origin, ls.wi, ls.distance * (1.0f - 1e-4f))) return vec3(0.0f);
+  if (scene.geometry->occluded(c.origin_towards(ls.wi), ls.wi, ls.distance * (1.0f - 1e-4f))) return vec3(0.0f);
   const float weight = power_heuristic(ls.pdf, c.bsdf.pdf(c.wo_local, wi_local));
-  return f * ls.radiance * (wi_local.z * weight / ls.pdf);
+  return f * ls.radiance * (std::fabs(wi_local.z) * weight / ls.pdf);
 }
 
 }  // namespace
@@ -57,12 +66,15 @@ vec3 area_light_contribution(const RenderScene& scene, const ShadingContext& c, 
 vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ray,
                 SampleStream& rng, FirstHit& first, PathCounters& counters) {
   vec3 radiance(0.0f), throughput(1.0f);
+  vec3 absorption(0.0f);  // of the volume the ray travels in (Beer-Lambert); 0 = none
   float bsdf_pdf = 0.0f;  // solid-angle pdf of the direction that led here; 0 = camera ray
   const bool light_sampling = !scene.area_lights->empty();
   for (int bounce = 0;; ++bounce) {
     HitRecord hit;
     ++counters.rays;
-    if (!scene.geometry->intersect(ray, hit)) {
+    const bool found = scene.geometry->intersect(ray, hit);
+    if (absorption != vec3(0.0f)) throughput *= found ? glm::exp(-absorption * hit.t) : vec3(0.0f);
+    if (!found) {
       radiance += throughput * scene.environment.radiance(ray.direction);
       break;
     }
@@ -76,35 +88,44 @@ vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ra
                                : 1.0f;
       radiance += throughput * sp.emission * weight;
     }
+    if (sp.unlit) {  // KHR_materials_unlit: the colour is what the surface shows
+      radiance += throughput * sp.base_color;
+      if (bounce == 0) first = {true, sp.base_color, s.ns, hit.t};
+      break;
+    }
     // Shade the side the ray arrived on; keep the shading normal in that hemisphere.
     if (!front) {
       s.ng = -s.ng;
       s.ns = -s.ns;
     }
-    // Interpolated normals can face away from the viewer near silhouettes: there the
-    // flat normal is the only consistent choice.
+    if (sp.normal != vec3(0.0f)) s.ns = front ? sp.normal : -sp.normal;
+    // Interpolated or mapped normals can face away from the viewer near silhouettes: there
+    // the flat normal is the only consistent choice.
     if (glm::dot(s.ns, s.ng) <= 0.0f || glm::dot(s.ns, ray.direction) >= 0.0f) s.ns = s.ng;
     if (bounce == 0) first = {true, sp.base_color, s.ns, hit.t};
     if (bounce >= params.max_bounces) break;
 
     const Frame frame = Frame::from_normal(s.ns);
-    const Bsdf bsdf{sp.base_color};  // Lambertian from baseColor until the glTF BRDF lands
-    const ShadingContext ctx{s, frame, bsdf, frame.to_local(-ray.direction), offset_ray_origin(s.p, s.ng)};
+    const vec3 wo_local = frame.to_local(-ray.direction);
+    const GltfBsdf bsdf(sp, wo_local, front ? sp.ior : 1.0f / sp.ior);
+    const ShadingContext ctx{s, frame, bsdf, wo_local};
     if (!scene.description.lights.empty()) radiance += throughput * punctual_light_contribution(scene, ctx, counters);
     if (light_sampling) radiance += throughput * area_light_contribution(scene, ctx, rng, counters);
 
     BsdfSample bs;
-    if (!bsdf.sample(ctx.wo_local, rng.next2(), bs)) break;
+    const float u_lobe = rng.next();
+    if (!bsdf.sample(wo_local, u_lobe, rng.next2(), bs)) break;
     const vec3 wi = frame.to_world(bs.wi);
-    if (glm::dot(wi, s.ng) <= 0.0f) break;  // below the true surface: no light that way
-    throughput *= bs.f * (bs.wi.z / bs.pdf);
+    if ((glm::dot(wi, s.ng) > 0.0f) == bs.transmitted) break;  // shading and geometry disagree
+    throughput *= bs.f * (std::fabs(bs.wi.z) / bs.pdf);
     bsdf_pdf = bs.pdf;
+    if (bs.transmitted && !sp.thin_walled) absorption = front ? sp.absorption : vec3(0.0f);
     if (bounce + 1 >= params.roulette_start) {
       const float survive = std::fmin(1.0f, max_component(throughput));
       if (rng.next() >= survive) break;
       throughput /= survive;
     }
-    ray = Ray{ctx.origin, wi};
+    ray = Ray{ctx.origin_towards(wi), wi};
   }
   if (!is_finite(radiance)) {
     ++counters.dropped;

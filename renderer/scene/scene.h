@@ -73,6 +73,33 @@ struct Material {
   AlphaMode alpha_mode = AlphaMode::Opaque;
   float alpha_cutoff = 0.5f;
   bool double_sided = false;
+
+  // KHR_materials_transmission (R channel), KHR_materials_ior
+  float transmission_factor = 0.0f;
+  TextureRef transmission_texture;
+  float ior = 1.5f;
+  // KHR_materials_volume: thickness 0 = thin-walled (light passes without refraction)
+  float thickness_factor = 0.0f;
+  TextureRef thickness_texture;  // G channel
+  glm::vec3 attenuation_color{1.0f};
+  float attenuation_distance = std::numeric_limits<float>::infinity();
+  // KHR_materials_specular
+  float specular_factor = 1.0f;
+  TextureRef specular_texture;  // A channel
+  glm::vec3 specular_color_factor{1.0f};
+  TextureRef specular_color_texture;  // sRGB encoded
+  // KHR_materials_clearcoat
+  float clearcoat_factor = 0.0f;
+  TextureRef clearcoat_texture;  // R channel
+  float clearcoat_roughness_factor = 0.0f;
+  TextureRef clearcoat_roughness_texture;  // G channel
+  // KHR_materials_sheen
+  glm::vec3 sheen_color_factor{0.0f};
+  TextureRef sheen_color_texture;  // sRGB encoded
+  float sheen_roughness_factor = 0.0f;
+  TextureRef sheen_roughness_texture;  // A channel
+  // KHR_materials_unlit: baseColor is shown as is, no light reaches it
+  bool unlit = false;
 };
 
 // One triangle list with one material (a glTF mesh primitive after strip/fan conversion).

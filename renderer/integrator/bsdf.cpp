@@ -1,0 +1,158 @@
+#include "renderer/integrator/bsdf.h"
+
+namespace tessera {
+namespace {
+
+float max3(const vec3& v) { return max_component(v); }
+
+// Thin-walled transmission mirrors the reflected direction through the surface plane.
+vec3 mirror_z(const vec3& w) { return {w.x, w.y, -w.z}; }
+
+}  // namespace
+
+GltfBsdf::GltfBsdf(const ShadingPoint& sp, const vec3& wo, float eta)
+    : base_(sp.base_color),
+      metallic_(sp.metallic),
+      transmission_(sp.transmission),
+      eta_(eta),
+      refracts_(!sp.thin_walled && sp.transmission > 0.0f),
+      specular_(sp.specular),
+      clearcoat_(sp.clearcoat),
+      ggx_{std::fmax(kMinAlpha, sp.roughness * sp.roughness)},
+      coat_ggx_{std::fmax(kMinAlpha, sp.clearcoat_roughness * sp.clearcoat_roughness)} {
+  const float r = (sp.ior - 1.0f) / (sp.ior + 1.0f);
+  f0_ = glm::min(vec3(r * r) * sp.specular_color, vec3(1.0f));
+  coat_scale_ = 1.0f - clearcoat_ * coat_fresnel(wo.z);
+  // Selection probabilities: each lobe's share of the reflected energy, estimated at the
+  // macro normal. Every lobe that can be non-zero keeps a non-zero probability.
+  const float fo = max3(dielectric_fresnel(wo.z));
+  const float dielectric = 1.0f - metallic_;
+  const float tint = std::fmax(luminance(base_), 1e-3f);
+  float w[kLobeCount];
+  w[kDiffuse] = dielectric * (1.0f - transmission_) * (1.0f - fo) * luminance(base_);
+  w[kSpecular] = metallic_ * max3(fresnel_schlick(base_, vec3(1.0f), wo.z)) + dielectric * fo;
+  w[kTransmission] = dielectric * transmission_ * std::fmax(1.0f - fo, 0.05f) * tint;
+  for (int i = 0; i < kClearcoat; ++i) w[i] *= coat_scale_;
+  w[kClearcoat] = clearcoat_ * coat_fresnel(wo.z);
+  float total = 0.0f;
+  for (float x : w) total += x;
+  for (int i = 0; i < kLobeCount; ++i) weight_[i] = total > 0.0f ? w[i] / total : 0.0f;
+}
+
+vec3 GltfBsdf::dielectric_fresnel(float cos_oh) const {
+  if (refracts_) return vec3(fresnel_dielectric(cos_oh, eta_));
+  return specular_ * fresnel_schlick(f0_, vec3(1.0f), cos_oh);
+}
+
+float GltfBsdf::coat_fresnel(float cos_o) const {
+  if (clearcoat_ <= 0.0f) return 0.0f;
+  return fresnel_schlick(vec3(0.04f), vec3(1.0f), cos_o).x;  // coat ior 1.5
+}
+
+vec3 GltfBsdf::reflection(const vec3& wo, const vec3& wi) const {
+  const vec3 h = glm::normalize(wo + wi);
+  const float cos_oh = glm::dot(wo, h);
+  const float spec = ggx_.D(h) * ggx_.G2(wo, wi) / (4.0f * wo.z * wi.z);
+  const vec3 fd = dielectric_fresnel(cos_oh);
+  const vec3 dielectric = (1.0f - max3(fd)) * (1.0f - transmission_) * base_ * kInvPi + fd * spec;
+  const vec3 metal = fresnel_schlick(base_, vec3(1.0f), cos_oh) * spec;
+  return glm::mix(dielectric, metal, metallic_);
+}
+
+vec3 GltfBsdf::transmission(const vec3& wo, const vec3& wi) const {
+  if (transmission_ <= 0.0f || metallic_ >= 1.0f) return vec3(0.0f);
+  float ft;
+  if (!refracts_) {
+    const vec3 wr = mirror_z(wi);
+    const vec3 h = glm::normalize(wo + wr);
+    const float fd = max3(dielectric_fresnel(glm::dot(wo, h)));
+    ft = (1.0f - fd) * ggx_.D(h) * ggx_.G2(wo, wr) / (4.0f * wo.z * wr.z);
+  } else {
+    vec3 h = wi * eta_ + wo;
+    if (glm::dot(h, h) <= 0.0f) return vec3(0.0f);
+    h = glm::normalize(h);
+    if (h.z < 0.0f) h = -h;
+    const float cos_oh = glm::dot(wo, h), cos_ih = glm::dot(wi, h);
+    if (cos_oh <= 0.0f || cos_ih >= 0.0f) return vec3(0.0f);  // back-facing microfacet
+    const float f = fresnel_dielectric(cos_oh, eta_);
+    const float denom = sqr(cos_ih + cos_oh / eta_) * std::fabs(wi.z) * wo.z;
+    // Radiance is compressed by eta^2 entering a denser medium (non-symmetric scattering).
+    ft = ggx_.D(h) * (1.0f - f) * ggx_.G2(wo, wi) * std::fabs(cos_ih * cos_oh / denom) / sqr(eta_);
+  }
+  return (1.0f - metallic_) * transmission_ * base_ * ft;
+}
+
+vec3 GltfBsdf::eval(const vec3& wo, const vec3& wi) const {
+  if (wo.z <= 0.0f || wi.z == 0.0f) return vec3(0.0f);
+  if (wi.z < 0.0f) return coat_scale_ * transmission(wo, wi);
+  vec3 f = coat_scale_ * reflection(wo, wi);
+  if (clearcoat_ > 0.0f) {
+    const vec3 h = glm::normalize(wo + wi);
+    f += clearcoat_ * coat_fresnel(wo.z) * coat_ggx_.D(h) * coat_ggx_.G2(wo, wi) / (4.0f * wo.z * wi.z);
+  }
+  return f;
+}
+
+float GltfBsdf::lobe_pdf(int lobe, const vec3& wo, const vec3& wi) const {
+  switch (lobe) {
+    case kDiffuse: return wi.z > 0.0f ? wi.z * kInvPi : 0.0f;
+    case kSpecular:
+    case kClearcoat: {
+      if (wi.z <= 0.0f) return 0.0f;
+      const vec3 h = glm::normalize(wo + wi);
+      const GgxDistribution& d = lobe == kSpecular ? ggx_ : coat_ggx_;
+      return d.visible_pdf(wo, h) / (4.0f * glm::dot(wo, h));
+    }
+    default: {  // transmission
+      if (wi.z >= 0.0f) return 0.0f;
+      if (!refracts_) {
+        const vec3 h = glm::normalize(wo + mirror_z(wi));
+        return ggx_.visible_pdf(wo, h) / (4.0f * glm::dot(wo, h));
+      }
+      vec3 h = wi * eta_ + wo;
+      if (glm::dot(h, h) <= 0.0f) return 0.0f;
+      h = glm::normalize(h);
+      if (h.z < 0.0f) h = -h;
+      const float cos_oh = glm::dot(wo, h), cos_ih = glm::dot(wi, h);
+      if (cos_oh <= 0.0f || cos_ih >= 0.0f) return 0.0f;
+      return ggx_.visible_pdf(wo, h) * std::fabs(cos_ih) / sqr(cos_ih + cos_oh / eta_);
+    }
+  }
+}
+
+float GltfBsdf::pdf(const vec3& wo, const vec3& wi) const {
+  if (wo.z <= 0.0f || wi.z == 0.0f) return 0.0f;
+  float p = 0.0f;
+  for (int i = 0; i < kLobeCount; ++i)
+    if (weight_[i] > 0.0f) p += weight_[i] * lobe_pdf(i, wo, wi);
+  return p;
+}
+
+bool GltfBsdf::sample(const vec3& wo, float u_lobe, const vec2& u, BsdfSample& s) const {
+  if (wo.z <= 0.0f) return false;
+  int lobe = 0;
+  for (float acc = weight_[0]; lobe < kLobeCount - 1 && u_lobe >= acc; acc += weight_[++lobe]) {}
+  if (weight_[lobe] <= 0.0f) return false;
+  switch (lobe) {
+    case kDiffuse: s.wi = sample_cosine_hemisphere(u); break;
+    case kSpecular: s.wi = reflect(wo, ggx_.sample_visible(wo, u)); break;
+    case kClearcoat: s.wi = reflect(wo, coat_ggx_.sample_visible(wo, u)); break;
+    default: {
+      const vec3 h = ggx_.sample_visible(wo, u);
+      if (!refracts_) {
+        s.wi = mirror_z(reflect(wo, h));
+        if (s.wi.z >= 0.0f) return false;
+      } else if (!refract(wo, h, eta_, s.wi)) {
+        return false;  // total internal reflection at this microfacet
+      }
+    }
+  }
+  const bool below = lobe == kTransmission;
+  if (below ? s.wi.z >= 0.0f : s.wi.z <= 0.0f) return false;
+  s.pdf = pdf(wo, s.wi);
+  s.f = eval(wo, s.wi);
+  s.transmitted = below;
+  return s.pdf > 0.0f && std::isfinite(s.pdf);
+}
+
+}  // namespace tessera
