@@ -9,7 +9,6 @@
 #include "app/render_setup.h"
 #include "renderer/image_output.h"
 #include "renderer/render.h"
-#include "scene_io/gltf_loader.h"
 
 #ifndef TESSERA_SCENES_DIR
 #define TESSERA_SCENES_DIR "scenes"
@@ -37,26 +36,19 @@ struct BenchRow {
 };
 
 BenchRow bench_scene(const std::string& path, const BenchOptions& o) {
-  GltfLoadResult loaded = load_gltf(path);
+  const MeasuredScene m = load_measured_scene(path, o.width);
   BenchRow row;
   row.name = std::filesystem::path(path).filename().string();
   RenderSettings settings;
-  settings.width = o.width;
-  settings.height = 0;
-  const Camera* first = loaded.scene.cameras.empty() ? nullptr : &loaded.scene.cameras[0];
-  resolve_resolution(first, settings.width, settings.height);
+  settings.width = m.width;
+  settings.height = m.height;
   settings.spp = o.spp;
   settings.threads = o.threads;
-  const Camera camera = choose_camera(loaded.scene, "", settings.width, settings.height);
-  EnvironmentParams env;
-  env.background = vec3(scene_has_lights(loaded.scene) ? 0.0f : 1.0f);
-  RenderScene scene(std::move(loaded.scene), env);
-  row.triangles = scene.geometry->instanced_triangles();
+  row.triangles = m.scene->geometry->instanced_triangles();
   row.width = settings.width;
   row.height = settings.height;
-  const RenderCamera rc = make_camera(camera, settings.width, settings.height, {});
   std::vector<RenderStats> runs;
-  for (int r = 0; r < o.repeat; ++r) runs.push_back(render_frame(scene, rc, settings).stats);
+  for (int r = 0; r < o.repeat; ++r) runs.push_back(render_frame(*m.scene, m.camera, settings).stats);
   std::sort(runs.begin(), runs.end(), [](const RenderStats& a, const RenderStats& b) { return a.seconds < b.seconds; });
   const RenderStats& median = runs[runs.size() / 2];
   row.median_seconds = median.seconds;

@@ -44,12 +44,27 @@ struct BenchOptions {
   int repeat = 3;
 };
 
+struct ScalingOptions {
+  std::string scene_path;
+  int threads_max = 0;  // 0 = the core count
+  std::vector<std::string> schedulers = {"tiles", "chunks", "counter", "interleaved"};
+  std::string tile_order = "scanline";
+  int spp = 16;
+  int width = 480;
+  int tile_size = 32;
+  int repeat = 3;
+  std::string out;  // default: scaling-<scene name>
+  bool quiet = false;
+};
+
 void add_render_command(CLI::App& app, RenderOptions& options);
 void add_info_command(CLI::App& app, InfoOptions& options);
 void add_bench_command(CLI::App& app, BenchOptions& options);
+void add_scaling_command(CLI::App& app, ScalingOptions& options);
 
 int run_render(const RenderOptions& options);
 int run_info(const InfoOptions& options);
 int run_bench(const BenchOptions& options);
+int run_scaling(const ScalingOptions& options);
 
 }  // namespace tessera

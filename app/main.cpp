@@ -23,9 +23,11 @@ int main(int argc, char** argv) {
   RenderOptions render;
   InfoOptions info;
   BenchOptions bench;
+  ScalingOptions scaling;
   add_render_command(app, render);
   add_info_command(app, info);
   add_bench_command(app, bench);
+  add_scaling_command(app, scaling);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -41,6 +43,7 @@ int main(int argc, char** argv) {
   try {
     if (app.got_subcommand("render")) return run_render(render);
     if (app.got_subcommand("info")) return run_info(info);
+    if (app.got_subcommand("scaling")) return run_scaling(scaling);
     return run_bench(bench);
   } catch (const SceneLoadError& e) {
     fmt::print(stderr, "tessera: error: {}\n", e.what());

@@ -16,10 +16,10 @@ std::string format_duration(double seconds) {
   return fmt::format("{:02}:{:02}", s / 60, s % 60);
 }
 
-ProgressDisplay::ProgressDisplay(const RenderMonitor& monitor, std::uint64_t total_samples, bool quiet)
-    : monitor_(monitor), total_(total_samples), terminal_(::isatty(STDERR_FILENO) == 1),
+ProgressDisplay::ProgressDisplay(const RenderMonitor& monitor, ProgressOptions options)
+    : monitor_(monitor), options_(std::move(options)), terminal_(::isatty(STDERR_FILENO) == 1),
       start_(std::chrono::steady_clock::now()) {
-  if (!quiet && total_ > 0) thread_ = std::thread([this] { run(); });
+  if (!options_.quiet && options_.total_samples > 0) thread_ = std::thread([this] { run(); });
 }
 
 ProgressDisplay::~ProgressDisplay() {
@@ -43,20 +43,23 @@ void ProgressDisplay::run() {
 void ProgressDisplay::draw(bool final_line) {
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   const std::uint64_t done = monitor_.samples_done.load(std::memory_order_relaxed);
-  const double fraction = total_ ? static_cast<double>(done) / total_ : 1.0;
+  const std::uint64_t total = options_.total_samples;
+  const double fraction = total ? static_cast<double>(done) / total : 1.0;
   const double rate = elapsed > 0 ? done / elapsed : 0.0;
-  const double eta = rate > 0 ? (total_ - done) / rate : -1.0;
+  const double eta = rate > 0 ? (total - done) / rate : -1.0;
   std::string line;
-  if (terminal_) {
+  if (terminal_ && final_line && options_.erase_when_done) {
+    line = "\r\x1b[K";  // clear the bar
+  } else if (terminal_) {
     constexpr int kWidth = 30;
     const int filled = static_cast<int>(fraction * kWidth);
-    line = fmt::format("\r[{}{}] {:5.1f}%  {} elapsed  ETA {}  {:.2f} M samples/s", std::string(filled, '#'),
+    line = fmt::format("\r{}[{}{}] {:5.1f}%  {} elapsed  ETA {}  {:.2f} M samples/s", options_.label, std::string(filled, '#'),
                        std::string(kWidth - filled, '.'), 100.0 * fraction, format_duration(elapsed),
                        format_duration(eta), rate * 1e-6);
     if (final_line) line += "\n";
   } else {
     if (final_line) return;  // the summary follows; a log needs no closing bar
-    line = fmt::format("rendering: {:.1f}% done, {} elapsed, ETA {}, {:.2f} M samples/s\n", 100.0 * fraction,
+    line = fmt::format("{}rendering: {:.1f}% done, {} elapsed, ETA {}, {:.2f} M samples/s\n", options_.label, 100.0 * fraction,
                        format_duration(elapsed), format_duration(eta), rate * 1e-6);
   }
   std::fputs(line.c_str(), stderr);

@@ -6,15 +6,23 @@
 #include <chrono>
 #include <condition_variable>
 #include <mutex>
+#include <string>
 #include <thread>
 
 #include "renderer/render.h"
 
 namespace tessera {
 
+struct ProgressOptions {
+  std::uint64_t total_samples = 0;
+  bool quiet = false;
+  std::string label;  // starts every line, e.g. which run of a series this is
+  bool erase_when_done = false;  // a terminal's bar vanishes at the end (the caller prints a result)
+};
+
 class ProgressDisplay {
  public:
-  ProgressDisplay(const RenderMonitor& monitor, std::uint64_t total_samples, bool quiet);
+  ProgressDisplay(const RenderMonitor& monitor, ProgressOptions options);
   ~ProgressDisplay();  // stops the display and ends the line
   ProgressDisplay(const ProgressDisplay&) = delete;
   ProgressDisplay& operator=(const ProgressDisplay&) = delete;
@@ -24,7 +32,7 @@ class ProgressDisplay {
   void draw(bool final_line);
 
   const RenderMonitor& monitor_;
-  std::uint64_t total_;
+  ProgressOptions options_;
   bool terminal_;
   std::chrono::steady_clock::time_point start_;
   std::mutex mutex_;

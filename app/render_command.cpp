@@ -206,7 +206,8 @@ int run_render(const RenderOptions& o) {
   InterruptHandler interrupts(monitor.cancel);  // stays installed while writing
   RenderResult result;
   {
-    ProgressDisplay progress(monitor, static_cast<std::uint64_t>(settings.width) * settings.height * settings.spp, o.quiet);
+    const std::uint64_t total = static_cast<std::uint64_t>(settings.width) * settings.height * settings.spp;
+    ProgressDisplay progress(monitor, {total, o.quiet, "", false});
     result = render_frame(scene, rc, settings, &monitor);
   }
   if (cost_layer) result.image.cost = tile_cost_image(result.profile);

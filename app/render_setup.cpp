@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "app/exit_codes.h"
+#include "scene_io/gltf_loader.h"
 
 namespace tessera {
 
@@ -53,6 +54,20 @@ float autofocus_distance(const RenderScene& scene, const RenderCamera& camera) {
   const Bounds3& b = scene.description.bounds;
   const float d = b.empty() ? 1.0f : glm::dot(b.center() - camera.position(), camera.forward());
   return d > 0.0f ? d : 1.0f;
+}
+
+MeasuredScene load_measured_scene(const std::string& path, int width) {
+  GltfLoadResult loaded = load_gltf(path);
+  MeasuredScene m;
+  m.width = width;
+  const Camera* first = loaded.scene.cameras.empty() ? nullptr : &loaded.scene.cameras[0];
+  resolve_resolution(first, m.width, m.height);
+  const Camera camera = choose_camera(loaded.scene, "", m.width, m.height);
+  EnvironmentParams env;
+  env.background = vec3(scene_has_lights(loaded.scene) ? 0.0f : 1.0f);
+  m.scene = std::make_unique<RenderScene>(std::move(loaded.scene), env);
+  m.camera = make_camera(camera, m.width, m.height, {});
+  return m;
 }
 
 }  // namespace tessera

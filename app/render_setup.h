@@ -2,6 +2,7 @@
 // the render and bench commands so both set scenes up the same way.
 #pragma once
 
+#include <memory>
 #include <string>
 
 #include "renderer/camera.h"
@@ -26,5 +27,14 @@ bool scene_has_lights(const SceneDescription& scene);
 
 // Distance along the view axis to what the centre of the image sees, for autofocus.
 float autofocus_distance(const RenderScene& scene, const RenderCamera& camera);
+
+// A scene set up the way bench and scaling measure it: the file's first camera (else an
+// automatic one), the 'auto' background, `width` pixels wide, height from the camera.
+struct MeasuredScene {
+  std::unique_ptr<RenderScene> scene;
+  RenderCamera camera;
+  int width = 0, height = 0;
+};
+MeasuredScene load_measured_scene(const std::string& path, int width);
 
 }  // namespace tessera

@@ -1,0 +1,33 @@
+// The results of tessera scaling and the files they are written to: a Markdown table, a
+// CSV file and an SVG plot of speedup against threads.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace tessera {
+
+// One scheduler at one thread count: medians over the repeated renders.
+struct ScalingRow {
+  std::string scheduler;
+  int threads = 0;
+  double wall = 0.0, wall_min = 0.0, wall_max = 0.0;  // seconds
+  double speedup = 0.0;  // baseline / wall
+  double efficiency = 0.0;  // measured: busy time / (threads x wall)
+  double imbalance = 1.0, tail = 0.0;
+};
+
+struct ScalingReport {
+  std::string scene;
+  int width = 0, height = 0, spp = 0, tile_size = 0, repeat = 0, cores = 0, threads_max = 0;
+  std::string tile_order;
+  std::vector<std::string> schedulers;
+  double baseline = 0.0;  // median one-thread wall time over every scheduler's runs
+  std::vector<ScalingRow> rows;  // by scheduler, then threads
+};
+
+std::string scaling_markdown(const ScalingReport& report);
+std::string scaling_csv(const ScalingReport& report);
+std::string scaling_svg(const ScalingReport& report);  // scaling_plot.cpp
+
+}  // namespace tessera
