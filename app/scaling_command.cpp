@@ -64,7 +64,7 @@ double median(std::vector<double> v) {
 }
 
 struct Samples {
-  std::vector<double> wall, efficiency, imbalance, tail;
+  std::vector<double> wall, efficiency, imbalance, tail, cpu_share;
 };
 
 ScalingRow summarize(const std::string& scheduler, int threads, const Samples& s, double baseline) {
@@ -78,6 +78,7 @@ ScalingRow summarize(const std::string& scheduler, int threads, const Samples& s
   row.efficiency = median(s.efficiency);
   row.imbalance = median(s.imbalance);
   row.tail = median(s.tail);
+  row.cpu_share = median(s.cpu_share);
   return row;
 }
 
@@ -139,6 +140,7 @@ int run_scaling(const ScalingOptions& o) {
     s.efficiency.push_back(r.stats.efficiency);
     s.imbalance.push_back(r.stats.imbalance);
     s.tail.push_back(r.profile.balance.tail);
+    s.cpu_share.push_back(r.profile.balance.cpu_share);
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (!o.quiet)
       fmt::print(stderr, "{}: {:.3f} s, efficiency {:.1f}%, imbalance {:.2f}; {} elapsed, about {} left\n", name,

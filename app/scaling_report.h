@@ -15,6 +15,7 @@ struct ScalingRow {
   double speedup = 0.0;  // baseline / wall
   double efficiency = 0.0;  // measured: busy time / (threads x wall)
   double imbalance = 1.0, tail = 0.0;
+  double cpu_share = 1.0;  // CPU time / busy time: below 1 when other processes took the cores
 };
 
 struct ScalingReport {

@@ -23,6 +23,7 @@ json frame_json(const FrameProfile& p, const RenderStats& stats) {
           {"parallel_efficiency", b.efficiency},
           {"imbalance", b.imbalance},
           {"tail_seconds", b.tail},
+          {"cpu_share", b.cpu_share},
           {"render_seconds", stats.seconds},
           {"camera_samples", stats.camera_samples},
           {"rays", stats.rays},
@@ -33,7 +34,8 @@ json threads_json(const FrameProfile& p) {
   json out = json::array();
   for (std::size_t t = 0; t < p.threads.size(); ++t) {
     const ThreadStats& s = p.threads[t];
-    out.push_back({{"thread", t}, {"busy_seconds", s.busy}, {"idle_seconds", s.idle}, {"items", s.items}});
+    out.push_back({{"thread", t}, {"busy_seconds", s.busy}, {"idle_seconds", s.idle}, {"cpu_seconds", s.cpu},
+                   {"items", s.items}});
   }
   return out;
 }
@@ -66,7 +68,7 @@ json runs_json(const FrameProfile& p) {
     if (r.thread < 0) continue;
     const WorkItem& item = p.plan.items[r.item];
     out.push_back({{"tile", item.tile}, {"rect", rect_json(item.rect)}, {"wave", r.wave}, {"thread", r.thread},
-                   {"start", r.start}, {"end", r.end}, {"samples", r.samples}, {"rays", r.rays}});
+                   {"start", r.start}, {"end", r.end}, {"cpu_seconds", r.cpu}, {"samples", r.samples}, {"rays", r.rays}});
   }
   return out;
 }
@@ -123,7 +125,8 @@ json trace_json(const FrameProfile& p) {
                       {"tid", r.thread},
                       {"ts", micros(r.start)},
                       {"dur", micros(r.end - r.start)},
-                      {"args", {{"rect", rect_json(item.rect)}, {"samples", r.samples}, {"rays", r.rays}}}});
+                      {"args", {{"rect", rect_json(item.rect)}, {"cpu_us", micros(r.cpu)}, {"samples", r.samples},
+                                {"rays", r.rays}}}});
   }
   return {{"traceEvents", std::move(events)},
           {"displayTimeUnit", "ms"},

@@ -72,10 +72,16 @@ RenderResult render_frame(const RenderScene& scene, const RenderCamera& camera,
     recorder.begin_wave(static_cast<int>(w), waves[w].begin, waves[w].end);
     runner.run([&](std::size_t i, int thread) {
       if (mon.cancel.load(std::memory_order_relaxed)) return;
-      const double t0 = recorder.now();
+      TileRecord run;
+      run.start = recorder.now();
+      run.cpu = ProfileRecorder::thread_cpu_seconds();
       TileCounters c;
       render_tile(scene, camera, settings, plan.items[i].rect, waves[w], film, c);
-      recorder.record(i, thread, t0, recorder.now(), c.samples, c.path.rays);
+      run.cpu = ProfileRecorder::thread_cpu_seconds() - run.cpu;
+      run.end = recorder.now();
+      run.samples = c.samples;
+      run.rays = c.path.rays;
+      recorder.record(i, thread, run);
       samples += c.samples;
       dropped += c.path.dropped;
       mon.samples_done += c.samples;

@@ -1,5 +1,7 @@
 #include "renderer/render_stats.h"
 
+#include <time.h>
+
 #include <algorithm>
 
 namespace tessera {
@@ -7,14 +9,16 @@ namespace tessera {
 LoadBalance load_balance(const std::vector<ThreadStats>& threads, const std::vector<WaveStats>& waves) {
   LoadBalance b;
   if (!waves.empty()) b.wall = waves.back().end - waves.front().start;
-  double busy = 0.0, most = 0.0;
+  double busy = 0.0, most = 0.0, cpu = 0.0;
   for (const ThreadStats& t : threads) {
     busy += t.busy;
+    cpu += t.cpu;
     most = std::max(most, t.busy);
   }
   const double n = static_cast<double>(threads.size());
   if (n > 0 && b.wall > 0.0) b.efficiency = busy / (n * b.wall);
   if (busy > 0.0) b.imbalance = most / (busy / n);
+  if (busy > 0.0) b.cpu_share = cpu / busy;
   for (const WaveStats& w : waves) b.tail += w.tail;
   return b;
 }
@@ -55,16 +59,25 @@ void ProfileRecorder::begin_wave(int wave, int sample_begin, int sample_end) {
   profile_.waves.push_back(w);
 }
 
-void ProfileRecorder::record(std::size_t item, int thread, double start, double end, std::uint64_t samples,
-                             std::uint64_t rays) {
+double ProfileRecorder::thread_cpu_seconds() {
+  timespec ts;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+void ProfileRecorder::record(std::size_t item, int thread, const TileRecord& run) {
   ThreadSlot& slot = slots_[thread];
-  slot.busy += end - start;
-  slot.last_end = end;
+  slot.busy += run.end - run.start;
+  slot.cpu += run.cpu;
+  slot.last_end = run.end;
   ++slot.items;
-  profile_.item_seconds[item] += end - start;
+  profile_.item_seconds[item] += run.end - run.start;
   if (!record_tiles_) return;
   TileRecord& r = profile_.records[static_cast<std::size_t>(wave_) * profile_.plan.items.size() + item];
-  r = {static_cast<int>(item), wave_, thread, start, end, samples, rays};
+  r = run;
+  r.item = static_cast<int>(item);
+  r.wave = wave_;
+  r.thread = thread;
 }
 
 void ProfileRecorder::end_wave() {
@@ -80,6 +93,7 @@ FrameProfile ProfileRecorder::finish() {
   for (std::size_t t = 0; t < slots_.size(); ++t) {
     ThreadStats& ts = profile_.threads[t];
     ts.busy = slots_[t].busy;
+    ts.cpu = slots_[t].cpu;
     ts.items = slots_[t].items;
   }
   profile_.balance = load_balance(profile_.threads, profile_.waves);

@@ -16,12 +16,14 @@ struct TileRecord {
   int item = -1, wave = -1;
   int thread = -1;  // -1: never ran (the frame was cancelled first)
   double start = 0.0, end = 0.0;
+  double cpu = 0.0;  // the thread's CPU time in the tile: less than end - start when preempted
   std::uint64_t samples = 0, rays = 0;
 };
 
 struct ThreadStats {
   double busy = 0.0;  // inside items
   double idle = 0.0;  // wall time minus busy: waiting for work, at wave ends, or not scheduled
+  double cpu = 0.0;  // CPU time inside items: on a shared machine, busy minus time preempted
   std::uint64_t items = 0;
 };
 
@@ -36,6 +38,7 @@ struct LoadBalance {
   double efficiency = 1.0;  // busy time summed over threads / (threads x wall)
   double imbalance = 1.0;  // max over mean thread busy time
   double tail = 0.0;  // the waves' tails summed: a barrier ends every wave
+  double cpu_share = 1.0;  // CPU time / busy time: below 1 when other processes took the cores
 };
 
 struct FrameProfile {
@@ -64,14 +67,16 @@ class ProfileRecorder {
   ProfileRecorder(const WorkPlan& plan, int waves, bool record_tiles);
 
   double now() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
+  static double thread_cpu_seconds();  // CPU time of the calling thread
   void begin_wave(int wave, int sample_begin, int sample_end);
-  void record(std::size_t item, int thread, double start, double end, std::uint64_t samples, std::uint64_t rays);
+  // `run` holds start, end, cpu, samples and rays; item, wave and thread are filled in here.
+  void record(std::size_t item, int thread, const TileRecord& run);
   void end_wave();
   FrameProfile finish();
 
  private:
   struct alignas(64) ThreadSlot {  // one cache line per thread: no false sharing
-    double busy = 0.0, last_end = 0.0;
+    double busy = 0.0, cpu = 0.0, last_end = 0.0;
     std::uint64_t items = 0;
   };
   std::chrono::steady_clock::time_point start_;

@@ -37,6 +37,8 @@ TEST(RenderStats, EveryTileRunsOncePerWaveAndItsSamplesAddUp) {
       EXPECT_LE(w.start, rec.start);
       EXPECT_LE(rec.start, rec.end);
       EXPECT_LE(rec.end, w.end);
+      EXPECT_GE(rec.cpu, 0.0);
+      EXPECT_LE(rec.cpu, rec.end - rec.start + 1e-4) << "more CPU time than wall time on one thread";
       samples += rec.samples;
       rays += rec.rays;
     }
@@ -58,7 +60,9 @@ TEST(RenderStats, TileTimesSumToEachThreadsBusyTimeAndNeverOverlap) {
       std::sort(runs.begin(), runs.end(), [](auto* a, auto* b) { return a->start < b->start; });
       for (std::size_t i = 0; i < runs.size(); ++i) {
         busy += runs[i]->end - runs[i]->start;
-        if (i > 0) EXPECT_LE(runs[i - 1]->end, runs[i]->start) << "one thread, two tiles at once";
+        if (i > 0) {
+          EXPECT_LE(runs[i - 1]->end, runs[i]->start) << "one thread, two tiles at once";
+        }
       }
       EXPECT_NEAR(busy, p.threads[t].busy, 1e-9) << scheduler_name(k) << " thread " << t;
       EXPECT_EQ(runs.size(), p.threads[t].items);
@@ -87,6 +91,9 @@ TEST(RenderStats, FrameFiguresFollowFromTheThreads) {
     tails += w.tail;
   }
   EXPECT_NEAR(p.balance.tail, tails, 1e-12);
+  double cpu = 0.0;
+  for (const ThreadStats& t : p.threads) cpu += t.cpu;
+  EXPECT_NEAR(p.balance.cpu_share, cpu / busy, 1e-12);
   double tile_total = 0.0;
   for (double s : tile_seconds(p)) tile_total += s;
   EXPECT_NEAR(tile_total, busy, 1e-9);
