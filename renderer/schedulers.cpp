@@ -2,11 +2,15 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <stdexcept>
 #include <thread>
 
+#include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
 #include <tbb/info.h>
+#include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
 #include <tbb/task_arena.h>
 
 namespace tessera {
@@ -96,12 +100,33 @@ WorkPlan make_work_plan(const WorkPlanParams& params) {
 }
 
 // TBB only lets an arena have as many threads as the process allows (the core count by
-// default), so more threads than cores need a global_control for the frame.
+// default), so more threads than cores need a global_control for the frame. TBB also starts
+// its workers lazily: one still starting when the first wave begins misses most of it, so
+// all the threads meet once before the frame.
 struct WaveRunner::Arena {
   explicit Arena(int threads)
       : control(tbb::global_control::max_allowed_parallelism,
                 static_cast<std::size_t>(std::max(threads, tbb::info::default_concurrency()))),
-        arena(threads) {}
+        arena(threads) {
+    gather(threads);
+  }
+
+  void gather(int threads) {
+    // Each of n tasks waits until n have started, so n distinct threads must run them. The
+    // deadline only matters if TBB cannot give the arena n threads.
+    std::atomic<int> arrived{0};
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(1);
+    arena.execute([&] {
+      tbb::parallel_for(
+          tbb::blocked_range<int>(0, threads, 1),
+          [&](const tbb::blocked_range<int>&) {
+            ++arrived;
+            while (arrived.load() < threads && std::chrono::steady_clock::now() < deadline) std::this_thread::yield();
+          },
+          tbb::simple_partitioner());
+    });
+  }
+
   tbb::global_control control;
   tbb::task_arena arena;
 };
