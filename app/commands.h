@@ -49,6 +49,7 @@ struct ScalingOptions {
   int threads_max = 0;  // 0 = the core count
   std::vector<std::string> schedulers = {"tiles", "chunks", "counter", "interleaved"};
   std::string tile_order = "scanline";
+  std::string envmap;
   int spp = 16;
   int width = 480;
   int tile_size = 32;

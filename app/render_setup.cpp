@@ -56,7 +56,7 @@ float autofocus_distance(const RenderScene& scene, const RenderCamera& camera) {
   return d > 0.0f ? d : 1.0f;
 }
 
-MeasuredScene load_measured_scene(const std::string& path, int width) {
+MeasuredScene load_measured_scene(const std::string& path, int width, const std::string& envmap) {
   GltfLoadResult loaded = load_gltf(path);
   MeasuredScene m;
   m.width = width;
@@ -65,6 +65,7 @@ MeasuredScene load_measured_scene(const std::string& path, int width) {
   const Camera camera = choose_camera(loaded.scene, "", m.width, m.height);
   EnvironmentParams env;
   env.background = vec3(scene_has_lights(loaded.scene) ? 0.0f : 1.0f);
+  env.image_path = envmap;
   m.scene = std::make_unique<RenderScene>(std::move(loaded.scene), env);
   m.camera = make_camera(camera, m.width, m.height, {});
   return m;

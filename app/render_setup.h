@@ -29,12 +29,13 @@ bool scene_has_lights(const SceneDescription& scene);
 float autofocus_distance(const RenderScene& scene, const RenderCamera& camera);
 
 // A scene set up the way bench and scaling measure it: the file's first camera (else an
-// automatic one), the 'auto' background, `width` pixels wide, height from the camera.
+// automatic one), the 'auto' background or the environment image `envmap` when given,
+// `width` pixels wide, height from the camera.
 struct MeasuredScene {
   std::unique_ptr<RenderScene> scene;
   RenderCamera camera;
   int width = 0, height = 0;
 };
-MeasuredScene load_measured_scene(const std::string& path, int width);
+MeasuredScene load_measured_scene(const std::string& path, int width, const std::string& envmap = "");
 
 }  // namespace tessera

@@ -31,6 +31,7 @@ void add_scaling_command(CLI::App& app, ScalingOptions& o) {
       ->capture_default_str();
   cmd->add_option("--tile-order", o.tile_order, "Tile order for every run (see render --tile-order)")
       ->check(CLI::IsMember(tile_order_names()))->capture_default_str();
+  cmd->add_option("--envmap", o.envmap, "Equirectangular environment image lighting the scene (see render --envmap)");
   cmd->add_option("--spp", o.spp, "Samples per pixel")->check(CLI::Range(1, 1 << 16))->capture_default_str();
   cmd->add_option("--width", o.width, "Image width (height from the camera's aspect ratio)")
       ->check(CLI::Range(1, 8192))->capture_default_str();
@@ -95,7 +96,7 @@ int run_scaling(const ScalingOptions& o) {
   std::filesystem::create_directories(dir, ec);
   check_writable_path((std::filesystem::path(dir) / "scaling.md").string());  // before any work
 
-  const MeasuredScene m = load_measured_scene(o.scene_path, o.width);
+  const MeasuredScene m = load_measured_scene(o.scene_path, o.width, o.envmap);
   ScalingReport report;
   report.scene = std::filesystem::path(o.scene_path).filename().string();
   report.width = m.width;
