@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include "scene_io/gltf_material_extensions.h"
 #include "scene_io/load_error.h"
 
 namespace tessera {
@@ -103,6 +104,12 @@ std::vector<Material> convert_materials(const tinygltf::Model& model, const std:
                                               : AlphaMode::Opaque;
     mat.alpha_cutoff = static_cast<float>(m.alphaCutoff);
     mat.double_sided = m.doubleSided;
+    read_material_extensions(
+        m,
+        [&](int index, int texcoord, const tinygltf::ExtensionMap& ext, const std::string& slot) {
+          return texture_ref(model, file, index, texcoord, ext, what + " " + slot, warnings);
+        },
+        [&](const std::string& problem) { throw SceneLoadError(file, what + ": " + problem); }, mat);
     const bool finite = all_finite((mat.base_color_factor)) &&
                         all_finite((mat.emissive_factor)) &&
                         std::isfinite(mat.emissive_strength) && std::isfinite(mat.metallic_factor) &&

@@ -15,7 +15,8 @@ GltfBsdf::GltfBsdf(const ShadingPoint& sp, const vec3& wo, float eta)
       metallic_(sp.metallic),
       transmission_(sp.transmission),
       eta_(eta),
-      refracts_(!sp.thin_walled && sp.transmission > 0.0f),
+      // An index of 1 bends nothing; the half-vector form of refraction degenerates there.
+      refracts_(!sp.thin_walled && sp.transmission > 0.0f && std::fabs(sp.ior - 1.0f) > 1e-3f),
       specular_(sp.specular),
       clearcoat_(sp.clearcoat),
       ggx_{std::fmax(kMinAlpha, sp.roughness * sp.roughness)},

@@ -1,0 +1,78 @@
+#include "scene_io/gltf_material_extensions.h"
+
+#include <cmath>
+
+namespace tessera {
+namespace {
+
+const tinygltf::Value* extension(const tinygltf::Material& m, const char* name) {
+  auto it = m.extensions.find(name);
+  return it == m.extensions.end() ? nullptr : &it->second;
+}
+
+float number(const tinygltf::Value& object, const char* key, float fallback) {
+  if (!object.IsObject() || !object.Has(key) || !object.Get(key).IsNumber()) return fallback;
+  return static_cast<float>(object.Get(key).GetNumberAsDouble());
+}
+
+glm::vec3 color(const tinygltf::Value& object, const char* key, glm::vec3 fallback) {
+  if (!object.IsObject() || !object.Has(key)) return fallback;
+  const tinygltf::Value& v = object.Get(key);
+  if (!v.IsArray() || v.ArrayLen() != 3) return fallback;
+  return {v.Get(0).GetNumberAsDouble(), v.Get(1).GetNumberAsDouble(), v.Get(2).GetNumberAsDouble()};
+}
+
+// A textureInfo object inside an extension.
+TextureRef texture(const tinygltf::Value& object, const char* key, const TextureResolver& resolve) {
+  if (!object.IsObject() || !object.Has(key) || !object.Get(key).IsObject()) return {};
+  const tinygltf::Value& info = object.Get(key);
+  if (!info.Has("index") || !info.Get("index").IsNumber()) return {};
+  tinygltf::ExtensionMap extensions;
+  if (info.Has("extensions") && info.Get("extensions").IsObject())
+    for (const std::string& name : info.Get("extensions").Keys()) extensions[name] = info.Get("extensions").Get(name);
+  const int texcoord = info.Has("texCoord") && info.Get("texCoord").IsNumber() ? info.Get("texCoord").GetNumberAsInt() : 0;
+  return resolve(info.Get("index").GetNumberAsInt(), texcoord, extensions, key);
+}
+
+}  // namespace
+
+void read_material_extensions(const tinygltf::Material& src, const TextureResolver& resolve,
+                              const std::function<void(const std::string&)>& fail, Material& mat) {
+  if (const tinygltf::Value* e = extension(src, "KHR_materials_transmission")) {
+    mat.transmission_factor = number(*e, "transmissionFactor", 0.0f);
+    mat.transmission_texture = texture(*e, "transmissionTexture", resolve);
+  }
+  if (const tinygltf::Value* e = extension(src, "KHR_materials_ior")) {
+    mat.ior = number(*e, "ior", 1.5f);
+    if (mat.ior == 0.0f) mat.ior = 1e4f;  // the specification's 0: reflect everything (f0 = 1)
+    if (!(mat.ior >= 1.0f) || !std::isfinite(mat.ior)) fail("KHR_materials_ior.ior must be 0 or at least 1");
+  }
+  if (const tinygltf::Value* e = extension(src, "KHR_materials_volume")) {
+    mat.thickness_factor = number(*e, "thicknessFactor", 0.0f);
+    mat.thickness_texture = texture(*e, "thicknessTexture", resolve);
+    mat.attenuation_distance = number(*e, "attenuationDistance", std::numeric_limits<float>::infinity());
+    mat.attenuation_color = color(*e, "attenuationColor", glm::vec3(1.0f));
+    if (!(mat.attenuation_distance > 0.0f)) fail("KHR_materials_volume.attenuationDistance must be positive");
+    if (!(mat.thickness_factor >= 0.0f)) fail("KHR_materials_volume.thicknessFactor must not be negative");
+  }
+  if (const tinygltf::Value* e = extension(src, "KHR_materials_specular")) {
+    mat.specular_factor = number(*e, "specularFactor", 1.0f);
+    mat.specular_texture = texture(*e, "specularTexture", resolve);
+    mat.specular_color_factor = color(*e, "specularColorFactor", glm::vec3(1.0f));
+    mat.specular_color_texture = texture(*e, "specularColorTexture", resolve);
+  }
+  if (const tinygltf::Value* e = extension(src, "KHR_materials_clearcoat")) {
+    mat.clearcoat_factor = number(*e, "clearcoatFactor", 0.0f);
+    mat.clearcoat_texture = texture(*e, "clearcoatTexture", resolve);
+    mat.clearcoat_roughness_factor = number(*e, "clearcoatRoughnessFactor", 0.0f);
+    mat.clearcoat_roughness_texture = texture(*e, "clearcoatRoughnessTexture", resolve);
+  }
+  if (extension(src, "KHR_materials_unlit")) mat.unlit = true;
+  const bool finite = std::isfinite(mat.transmission_factor) && std::isfinite(mat.thickness_factor) &&
+                      std::isfinite(mat.specular_factor) && all_finite(mat.specular_color_factor) &&
+                      all_finite(mat.attenuation_color) && std::isfinite(mat.clearcoat_factor) &&
+                      std::isfinite(mat.clearcoat_roughness_factor);
+  if (!finite) fail("has a non-finite extension factor");
+}
+
+}  // namespace tessera

@@ -1,0 +1,53 @@
+// The KHR_materials_* extensions read from the Khronos sample models, values as their JSON
+// states them.
+#include <gtest/gtest.h>
+
+#include "scene_io/gltf_loader.h"
+#include "tests/test_support.h"
+
+namespace tessera {
+namespace {
+
+SceneDescription load(const std::string& name) {
+  return load_gltf(test::scene_path("khronos/" + name + "/glTF-Binary/" + name + ".glb")).scene;
+}
+
+TEST(GltfMaterialExtensions, TransmissionIorAndVolume) {
+  const SceneDescription s = load("TransmissionRoughnessTest");
+  const Material& air = s.materials[1];  // "Mat_IOR_1.0"
+  EXPECT_EQ(air.name, "Mat_IOR_1.0");
+  EXPECT_FLOAT_EQ(air.transmission_factor, 1.0f);
+  EXPECT_FLOAT_EQ(air.ior, 1.0f);
+  EXPECT_FLOAT_EQ(air.thickness_factor, 0.005f);
+  EXPECT_FLOAT_EQ(s.materials[2].ior, 1.33f);
+  EXPECT_FLOAT_EQ(s.materials[3].ior, 1.5f);  // no KHR_materials_ior: the default
+}
+
+TEST(GltfMaterialExtensions, VolumeAttenuation) {
+  const SceneDescription s = load("AttenuationTest");
+  const Material& m = s.materials[1];  // "R2_ThicknessFac_1.5"
+  EXPECT_EQ(m.name, "R2_ThicknessFac_1.5");
+  EXPECT_FLOAT_EQ(m.thickness_factor, 1.5f);
+  EXPECT_FLOAT_EQ(m.attenuation_distance, 1.0f);
+  EXPECT_EQ(m.attenuation_color, glm::vec3(0.1f, 0.5f, 0.9f));
+}
+
+TEST(GltfMaterialExtensions, ClearcoatWithTextures) {
+  const SceneDescription s = load("ClearCoatTest");
+  EXPECT_FLOAT_EQ(s.materials[1].clearcoat_factor, 1.0f);
+  EXPECT_FLOAT_EQ(s.materials[1].clearcoat_roughness_factor, 0.03f);
+  EXPECT_FALSE(s.materials[1].clearcoat_texture.present());
+  EXPECT_TRUE(s.materials[4].clearcoat_texture.present());  // "Partial_Coated"
+  EXPECT_TRUE(s.materials[7].clearcoat_roughness_texture.present());  // "RoughVariations_Coated"
+  EXPECT_FLOAT_EQ(s.materials[0].clearcoat_factor, 0.0f);  // no extension: none
+}
+
+TEST(GltfMaterialExtensions, RenderedExtensionsAreSupported) {
+  for (const char* name : {"KHR_materials_transmission", "KHR_materials_ior", "KHR_materials_volume",
+                           "KHR_materials_specular", "KHR_materials_clearcoat", "KHR_materials_unlit"})
+    EXPECT_TRUE(is_supported_gltf_extension(name)) << name;
+  EXPECT_FALSE(is_supported_gltf_extension("KHR_materials_sheen"));  // not rendered yet
+}
+
+}  // namespace
+}  // namespace tessera
