@@ -646,6 +646,26 @@ def plan_sphere_frequency(camera, spheres):
 REPORT = []
 
 
+def frame_extent(camera, spheres):
+    """NDC box (x0, y0, x1, y1) of the spheres' silhouettes, frame = [-1, 1]^2."""
+    box = [math.inf, math.inf, -math.inf, -math.inf]
+    for centre, radius in spheres:
+        to_c = sub(centre, camera.eye)
+        d = length(to_c)
+        axis = mul(to_c, 1.0 / d)
+        cc = add(camera.eye, mul(to_c, 1.0 - (radius * radius) / (d * d)))
+        cr = radius * math.sqrt(d * d - radius * radius) / d
+        helper = (1.0, 0.0, 0.0) if abs(axis[0]) < 0.9 else (0.0, 1.0, 0.0)
+        u = normalize(cross(axis, helper))
+        v = cross(axis, u)
+        for k in range(64):
+            phi = 2.0 * math.pi * k / 64
+            q = camera.ndc(add(cc, add(mul(u, cr * math.cos(phi)), mul(v, cr * math.sin(phi)))))
+            if q:
+                box = [min(box[0], q[0]), min(box[1], q[1]), max(box[2], q[0]), max(box[3], q[1])]
+    return box
+
+
 def make_scene(stem, title, camera, spheres, ground_spec, description, extras=None, min_frequency=1):
     """spheres: (node name, centre, radius, material name, material key, inward)."""
     n, worst_px = plan_sphere_frequency(camera, [(s[1], s[2]) for s in spheres])
@@ -661,6 +681,7 @@ def make_scene(stem, title, camera, spheres, ground_spec, description, extras=No
                               "at 1200x675 %.3f px" % (ground.radius, ground.segments, len(ground.rings) - 1,
                                                        len(ground.triangles), ground_err))
     REPORT.append({
+        "frame": frame_extent(camera, [(s[1], s[2]) for s in spheres]),
         "scene": stem, "spheres": len(spheres), "largest_silhouette_radius_px": worst_px, "frequency": n,
         "sphere_triangles": w.sphere_triangles, "sphere_deviation": w.sphere_deviation,
         "silhouette_error_px": w.sphere_deviation * worst_px, "ground_segments": ground.segments,
@@ -689,7 +710,7 @@ def three_balls():
                       "smooth metal, diffuse, rough metal (fuzz 1). Also the bounce figure (--max-bounces 1 and 5).")
 
 
-REFRACTION_CAMERA = Camera("Refraction camera", (0.0, 0.7, 2.2), (0.0, 0.0, -1.1), (0.0, 1.0, 0.0), 40.0)
+REFRACTION_CAMERA = Camera("Refraction camera", (0.0, 0.9, 3.4), (0.0, 0.0, -1.1), (0.0, 1.0, 0.0), 40.0)
 ABSORBING = ((0.3, 0.8, 0.6), 1.0)  # attenuationColor, attenuationDistance (world units)
 
 
@@ -805,7 +826,7 @@ def timing_scene():
 
 ADVERSARIAL_CAMERA = Camera("Adversarial camera", (0.0, 1.5, 8.0), (0.0, 0.6, 0.0), (0.0, 1.0, 0.0), 30.0)
 CLUSTER_RADIUS, CLUSTER_SPHERE = 0.5, 0.04
-CLUSTER_NDC = (-0.74, -0.56)  # where the cluster's centre lands in the frame (lower left)
+CLUSTER_NDC = (-0.70, -0.52)  # where the cluster's centre lands in the frame (lower left)
 # Deliberately finer than its 15 px spheres need (frequency 5): the cluster is meant to be expensive.
 ADVERSARIAL_FREQUENCY = 16
 
@@ -956,6 +977,11 @@ def print_report():
             r["scene"], r["spheres"], r["largest_silhouette_radius_px"], r["frequency"], r["sphere_triangles"],
             r["sphere_deviation"], r["silhouette_error_px"], "%dx%d" % (r["ground_segments"], r["ground_bands"]),
             r["ground_triangles"], r["ground_error_px"], r["materials"], r["meshes"]))
+    print("\nSpheres' extent in the frame of the scenes framed here (NDC, the frame is -1..1; y up)")
+    for r in REPORT:
+        if r["scene"] in ("grid-of-spheres", "timing-scene"):
+            continue  # the book's camera; spheres run out of the frame on every side
+        print("  %-16s x %+.3f .. %+.3f   y %+.3f .. %+.3f" % (r["scene"], r["frame"][0], r["frame"][2], r["frame"][1], r["frame"][3]))
     print("\nRTOW fuzz -> glTF roughness (median-angle match at normal incidence)")
     for fz in (0.0, 0.05, 0.1, 0.2, 0.3, 0.4, 0.5, 0.75, 1.0):
         med = math.degrees(rtow_fuzz_median_angle(fz)) if fz > 0 else 0.0
