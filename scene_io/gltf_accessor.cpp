@@ -207,6 +207,13 @@ std::vector<double> AccessorReader::read(int index, int components, const std::s
                      components == 1 ? "SCALAR" : fmt::format("VEC{}", components)));
   if (acc.count > (std::size_t{1} << 31))
     fail(fmt::format("{} has an implausible count {}", name, acc.count));
+  // Without a bufferView the elements are zeros (bar the sparse ones) that the file does not
+  // store: a few bytes of JSON could otherwise ask for gigabytes.
+  constexpr std::size_t kMostUnstored = std::size_t{1} << 24;
+  if (acc.bufferView < 0 && acc.count > kMostUnstored)
+    fail(fmt::format("{} has no bufferView and {} elements; tessera reads at most {} elements "
+                     "that the file does not store",
+                     name, acc.count, kMostUnstored));
   std::vector<double> out;
   read_dense(acc, components, name, out);
   if (acc.sparse.isSparse) apply_sparse(acc, components, name, out);

@@ -61,6 +61,10 @@ void check_external_images(const tinygltf::Model& model, const std::string& name
   for (std::size_t i = 0; i < model.images.size(); ++i) {
     const tinygltf::Image& image = model.images[i];
     if (!image.image.empty() || image.uri.empty() || image.bufferView >= 0) continue;
+    if (image.uri.rfind("data:", 0) == 0)  // a media type tinygltf does not decode
+      throw SceneLoadError(name, fmt::format("image {} has a data URI of media type '{}'; tessera "
+                                             "reads PNG and JPEG images",
+                                             i, image.uri.substr(5, image.uri.find_first_of(";,") - 5)));
     std::string why = unreadable_reason(resolve_gltf_uri(base_dir, image.uri));
     if (why.empty()) why = "it is empty";
     throw SceneLoadError(name, fmt::format("image {} refers to {}, which cannot be opened: {}", i,
