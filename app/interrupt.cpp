@@ -1,16 +1,17 @@
 #include "app/interrupt.h"
 
-#include <csignal>
 #include <unistd.h>
+
+#include <csignal>
 
 namespace tessera {
 namespace {
 
-std::atomic<bool>* g_cancel = nullptr;
+std::atomic<std::atomic<bool>*> g_cancel{nullptr};
 volatile std::sig_atomic_t g_signals = 0;
-struct sigaction g_old_int, g_old_term;
 
 static_assert(std::atomic<bool>::is_always_lock_free, "the signal handler stores to it");
+static_assert(std::atomic<std::atomic<bool>*>::is_always_lock_free, "the signal handler loads it");
 
 void on_signal(int) {
   if (g_signals++ > 0) {
@@ -19,28 +20,27 @@ void on_signal(int) {
     ::_exit(130);
   }
   static const char kMessage[] =
-      "\ntessera: interrupted: finishing the tiles in flight, then writing what is done (again to quit now)\n";
+      "\ntessera: interrupted: finishing the work in flight, then writing what is done (again to quit now)\n";
   (void)!::write(STDERR_FILENO, kMessage, sizeof kMessage - 1);
-  if (g_cancel) g_cancel->store(true, std::memory_order_relaxed);
+  if (std::atomic<bool>* cancel = g_cancel.load()) cancel->store(true, std::memory_order_relaxed);
 }
 
 }  // namespace
 
-InterruptHandler::InterruptHandler(std::atomic<bool>& cancel) {
-  g_cancel = &cancel;
-  g_signals = 0;
+void install_interrupt_handlers() {
   struct sigaction sa {};
   sa.sa_handler = on_signal;
   sigemptyset(&sa.sa_mask);
-  sigaction(SIGINT, &sa, &g_old_int);
-  sigaction(SIGTERM, &sa, &g_old_term);
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
 }
 
-InterruptHandler::~InterruptHandler() {
-  sigaction(SIGINT, &g_old_int, nullptr);
-  sigaction(SIGTERM, &g_old_term, nullptr);
-  g_cancel = nullptr;
+InterruptHandler::InterruptHandler(std::atomic<bool>& cancel) {
+  g_cancel.store(&cancel);
+  if (g_signals > 0) cancel.store(true);  // the signal came before the work began
 }
+
+InterruptHandler::~InterruptHandler() { g_cancel.store(nullptr); }
 
 bool InterruptHandler::interrupted() const { return g_signals > 0; }
 

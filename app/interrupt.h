@@ -1,16 +1,21 @@
-// SIGINT and SIGTERM while rendering: the first asks the render to stop (tiles in flight
-// finish, the frame keeps every finished sample and is written); the second ends the
+// SIGINT and SIGTERM: the first asks the work in progress to stop (a render finishes its
+// tiles in flight, keeps every finished sample and writes them); the second ends the
 // process at once with exit code 130, leaving any earlier output file untouched.
+// install_interrupt_handlers() runs first thing in main, so a signal that arrives while a
+// scene loads is not lost: the render that follows stops before it starts.
 #pragma once
 
 #include <atomic>
 
 namespace tessera {
 
+void install_interrupt_handlers();
+
+// While alive, a first signal sets `cancel` (at once if one has already arrived).
 class InterruptHandler {
  public:
-  explicit InterruptHandler(std::atomic<bool>& cancel);  // installs the handlers
-  ~InterruptHandler();  // restores the previous ones
+  explicit InterruptHandler(std::atomic<bool>& cancel);
+  ~InterruptHandler();
   InterruptHandler(const InterruptHandler&) = delete;
   InterruptHandler& operator=(const InterruptHandler&) = delete;
 

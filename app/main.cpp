@@ -7,11 +7,13 @@
 
 #include "app/commands.h"
 #include "app/exit_codes.h"
+#include "app/interrupt.h"
 #include "renderer/image_output.h"
 #include "scene_io/load_error.h"
 
 int main(int argc, char** argv) {
   using namespace tessera;
+  install_interrupt_handlers();
   CLI::App app{"tessera " + tessera_version() +
                ": a physically based path tracer for glTF 2.0 scenes.\n\n"
                "Exit codes: 0 success, 1 internal or system failure (out of memory, disk full),\n"
