@@ -52,7 +52,7 @@ Layout layout(const WorkPlanParams& p) {
 }
 
 void draw_tiles(Canvas& c, const FrameProfile& profile, const Layout& l, double max_seconds) {
-  const std::vector<double> seconds = tile_seconds(profile);
+  const std::vector<double> seconds = tile_seconds(profile, TileClock::cpu);
   auto sx = [&](int x) { return l.map_x + static_cast<int>(std::lround(x * l.zoom)); };
   auto sy = [&](int y) { return l.map_y + static_cast<int>(std::lround(y * l.zoom)); };
   const bool outline = profile.plan.params.tile_size * l.zoom >= 8.0;
@@ -77,15 +77,15 @@ void draw_colour_bar(Canvas& c, const Layout& l, double max_seconds) {
     c.fill_rect(l.bar_x + kBarWidth, y, l.bar_x + kBarWidth + 6, y + 1, kInk);
     c.text(l.bar_x + kBarWidth + 10, y - kFontHeight * kFont / 2, number(v), kFont, kInk);
   }
-  c.text(l.bar_x, top - kFontHeight * kFont - 6, u.name, kFont, kInk);
+  c.text(l.bar_x, top - kFontHeight * kFont - 6, std::string("CPU ") + u.name, kFont, kInk);
 }
 
 std::string summary_line(const FrameProfile& p) {
-  const std::vector<double> s = tile_seconds(p);
+  const std::vector<double> s = tile_seconds(p, TileClock::cpu);
   double total = 0.0;
   for (double v : s) total += v;
   const double max = s.empty() ? 0.0 : *std::max_element(s.begin(), s.end());
-  return fmt::format("tile cost: max {:.3g} s, mean {:.3g} s; efficiency {:.1f}%, imbalance {:.2f}", max,
+  return fmt::format("tile CPU time: max {:.3g} s, mean {:.3g} s; efficiency {:.1f}%, imbalance {:.2f}", max,
                      total / std::max<std::size_t>(1, s.size()), 100.0 * p.balance.efficiency, p.balance.imbalance);
 }
 
@@ -99,7 +99,7 @@ Canvas draw_heatmap(const FrameProfile& profile, const HeatmapParams& params) {
                              2 * kMargin + std::max(text_width(summary, kFont), text_width(params.title, kFont)));
   const int height = l.map_y + std::max(l.map_h, 120) + line + 2 * kMargin;
   Canvas c(width, height, kPaper);
-  const std::vector<double> s = tile_seconds(profile);
+  const std::vector<double> s = tile_seconds(profile, TileClock::cpu);
   const double max_seconds = s.empty() ? 0.0 : *std::max_element(s.begin(), s.end());
   c.text(kMargin, kMargin, params.title, kFont, kInk);
   draw_tiles(c, profile, l, max_seconds);

@@ -1,5 +1,6 @@
-// --heatmap: the time spent on each tile (summed over the sample waves) as a colour map
-// over the image, with a colour bar, its scale and a one-line summary of the frame.
+// --heatmap: the CPU time spent on each tile (summed over the sample waves) as a colour map
+// over the image, with a colour bar, its scale and a one-line summary of the frame. CPU
+// time, not wall time, so a busy machine's preemptions do not show up as expensive tiles.
 #pragma once
 
 #include <string>

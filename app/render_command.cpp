@@ -49,7 +49,8 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
   cmd->add_option("--trace", o.trace,
                   "Write a Chrome trace-event timeline (FILE.json: one track per thread, one slice per tile) "
                   "for Perfetto (ui.perfetto.dev) or chrome://tracing");
-  cmd->add_option("--heatmap", o.heatmap, "Write the time spent on each tile as a colour map with a legend (FILE.png)");
+  cmd->add_option("--heatmap", o.heatmap,
+                  "Write the CPU time spent on each tile as a colour map with a legend (FILE.png)");
   cmd->add_option("--seed", o.seed, "Seed of every random number (same seed, same image, for any thread count)")
       ->check(CLI::Range(0LL, 2147483647LL))->capture_default_str();
   cmd->add_option("--camera", o.camera, "Camera by index or name [default: the scene's first, else an automatic camera framing the scene]");
@@ -72,7 +73,7 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
       ->capture_default_str();
   cmd->add_option("--aov", o.aovs,
                   "Extra EXR layers: albedo (Albedo.RGB), normal (N.XYZ, world space), depth (Z), "
-                  "cost (cost.time: seconds spent on the pixel's tile)")
+                  "cost (cost.time: CPU seconds spent on the pixel's tile)")
       ->delimiter(',')
       ->check(CLI::IsMember({"albedo", "normal", "depth", "cost"}));
   cmd->add_flag("--half", o.half, "Write 16-bit half floats to the EXR instead of 32-bit floats");

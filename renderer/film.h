@@ -21,7 +21,7 @@ struct FrameImage {
   std::vector<float> rgb;  // 3 per pixel
   std::vector<float> albedo, normal;  // 3 per pixel, when requested
   std::vector<float> depth;  // 1 per pixel, when requested; 0 where no sample hit
-  std::vector<float> cost;  // 1 per pixel, when requested: seconds spent on the pixel's tile
+  std::vector<float> cost;  // 1 per pixel, when requested: CPU seconds spent on the pixel's tile
 };
 
 class Film {

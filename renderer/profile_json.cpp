@@ -51,14 +51,15 @@ json waves_json(const FrameProfile& p) {
 }
 
 json tiles_json(const FrameProfile& p) {
-  const std::vector<double> seconds = tile_seconds(p);
+  const std::vector<double> seconds = tile_seconds(p), cpu = tile_seconds(p, TileClock::cpu);
   json out = json::array();
   for (std::size_t t = 0; t < p.plan.tiles.size(); ++t)
     out.push_back({{"tile", t},
                    {"column", t % p.plan.grid.columns},
                    {"row", t / p.plan.grid.columns},
                    {"rect", rect_json(p.plan.tiles[t])},
-                   {"seconds", seconds[t]}});
+                   {"seconds", seconds[t]},
+                   {"cpu_seconds", cpu[t]}});
   return out;
 }
 

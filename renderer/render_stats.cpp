@@ -23,17 +23,17 @@ LoadBalance load_balance(const std::vector<ThreadStats>& threads, const std::vec
   return b;
 }
 
-std::vector<double> tile_seconds(const FrameProfile& profile) {
+std::vector<double> tile_seconds(const FrameProfile& profile, TileClock clock) {
+  const std::vector<double>& items = clock == TileClock::wall ? profile.item_seconds : profile.item_cpu_seconds;
   std::vector<double> seconds(profile.plan.tiles.size(), 0.0);
-  for (std::size_t i = 0; i < profile.plan.items.size(); ++i)
-    seconds[profile.plan.items[i].tile] += profile.item_seconds[i];
+  for (std::size_t i = 0; i < profile.plan.items.size(); ++i) seconds[profile.plan.items[i].tile] += items[i];
   return seconds;
 }
 
 std::vector<float> tile_cost_image(const FrameProfile& profile) {
   const int w = profile.plan.params.width;
   std::vector<float> image(static_cast<std::size_t>(w) * profile.plan.params.height, 0.0f);
-  const std::vector<double> seconds = tile_seconds(profile);
+  const std::vector<double> seconds = tile_seconds(profile, TileClock::cpu);
   for (std::size_t t = 0; t < seconds.size(); ++t) {
     const Tile& r = profile.plan.tiles[t];
     for (int y = r.y0; y < r.y1; ++y)
@@ -46,6 +46,7 @@ ProfileRecorder::ProfileRecorder(const WorkPlan& plan, int waves, bool record_ti
     : start_(std::chrono::steady_clock::now()), slots_(plan.params.threads), record_tiles_(record_tiles) {
   profile_.plan = plan;
   profile_.item_seconds.assign(plan.items.size(), 0.0);
+  profile_.item_cpu_seconds.assign(plan.items.size(), 0.0);
   if (record_tiles) profile_.records.resize(static_cast<std::size_t>(waves) * plan.items.size());
 }
 
@@ -72,6 +73,7 @@ void ProfileRecorder::record(std::size_t item, int thread, const TileRecord& run
   slot.last_end = run.end;
   ++slot.items;
   profile_.item_seconds[item] += run.end - run.start;
+  profile_.item_cpu_seconds[item] += run.cpu;
   if (!record_tiles_) return;
   TileRecord& r = profile_.records[static_cast<std::size_t>(wave_) * profile_.plan.items.size() + item];
   r = run;

@@ -45,7 +45,8 @@ struct FrameProfile {
   WorkPlan plan;
   std::vector<WaveStats> waves;
   std::vector<ThreadStats> threads;
-  std::vector<double> item_seconds;  // per item, summed over waves
+  std::vector<double> item_seconds;  // per item, summed over waves: wall time
+  std::vector<double> item_cpu_seconds;  // the same in thread CPU time
   std::vector<TileRecord> records;  // waves x items, wave-major; empty unless asked for
   LoadBalance balance;
 };
@@ -53,10 +54,14 @@ struct FrameProfile {
 // Busy and idle per thread, efficiency, imbalance and tail, from what the threads recorded.
 LoadBalance load_balance(const std::vector<ThreadStats>& threads, const std::vector<WaveStats>& waves);
 
-// Seconds spent on each tile of the grid (row-major), summed over its items and the waves.
-std::vector<double> tile_seconds(const FrameProfile& profile);
+// Wall time is what the scheduler saw; CPU time is what the pixels cost, whatever else the
+// machine was doing (a preempted tile's wall time grows, its CPU time does not).
+enum class TileClock { wall, cpu };
 
-// A per-pixel image (row-major) of the seconds spent on the pixel's tile.
+// Seconds spent on each tile of the grid (row-major), summed over its items and the waves.
+std::vector<double> tile_seconds(const FrameProfile& profile, TileClock clock = TileClock::wall);
+
+// A per-pixel image (row-major) of the CPU seconds spent on the pixel's tile.
 std::vector<float> tile_cost_image(const FrameProfile& profile);
 
 // Collects a FrameProfile while a frame renders. The driving thread calls begin_wave and

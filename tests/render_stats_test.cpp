@@ -97,6 +97,9 @@ TEST(RenderStats, FrameFiguresFollowFromTheThreads) {
   double tile_total = 0.0;
   for (double s : tile_seconds(p)) tile_total += s;
   EXPECT_NEAR(tile_total, busy, 1e-9);
+  double tile_cpu = 0.0;
+  for (double s : tile_seconds(p, TileClock::cpu)) tile_cpu += s;
+  EXPECT_NEAR(tile_cpu, cpu, 1e-9);
 }
 
 TEST(RenderStats, StaticSchedulersRunExactlyTheirOwnItems) {
@@ -126,10 +129,10 @@ TEST(RenderStats, WithoutRecordsThereAreNoneButTheBalanceIsStillMeasured) {
   EXPECT_EQ(r.profile.item_seconds.size(), r.profile.plan.items.size());
 }
 
-TEST(RenderStats, CostLayerGivesEveryPixelItsTilesTime) {
+TEST(RenderStats, CostLayerGivesEveryPixelItsTilesCpuTime) {
   const FrameProfile p = profiled(SchedulerKind::chunks).profile;
   const std::vector<float> cost = tile_cost_image(p);
-  const std::vector<double> seconds = tile_seconds(p);
+  const std::vector<double> seconds = tile_seconds(p, TileClock::cpu);
   ASSERT_EQ(cost.size(), 45u * 37u);
   for (std::size_t t = 0; t < p.plan.tiles.size(); ++t) {
     const Tile& r = p.plan.tiles[t];
