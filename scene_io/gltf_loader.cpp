@@ -65,10 +65,6 @@ class Converter {
     out_.images = convert_images(model_, file_);
     const std::vector<int> parent = check_node_hierarchy(model_, file_);
     traverse(scene_roots(model_, choose_scene(params.scene), parent, file_));
-    for (const Instance& inst : out_.instances)
-      for (const TriangleMesh& prim : out_.meshes[inst.mesh].primitives)
-        for (const glm::vec3& p : prim.positions)
-          out_.bounds.extend(glm::vec3(inst.object_to_world * glm::vec4(p, 1.0f)));
   }
 
  private:
@@ -185,7 +181,14 @@ class Converter {
         out_.meshes.push_back(std::move(mesh));
       }
     }
-    if (it->second >= 0) out_.instances.push_back({it->second, world, node.name});
+    if (it->second < 0) return;
+    out_.instances.push_back({it->second, world, node.name});
+    Bounds3 placed;  // finite matrices and positions can still overflow together
+    for (const TriangleMesh& prim : out_.meshes[it->second].primitives)
+      for (const glm::vec3& p : prim.positions) placed.extend(glm::vec3(world * glm::vec4(p, 1.0f)));
+    if (!all_finite(placed.lo) || !all_finite(placed.hi))
+      fail(fmt::format("node {} places mesh {} beyond the range of 32-bit floats", index, node.mesh));
+    out_.bounds.extend(placed);
   }
 
   Mesh convert_mesh(int index) {
