@@ -50,6 +50,9 @@ int main(int argc, char** argv) {
   } catch (const SceneLoadError& e) {
     fmt::print(stderr, "tessera: error: {}\n", e.what());
     return kExitBadInput;
+  } catch (const OutputPathError& e) {  // checked before rendering
+    fmt::print(stderr, "tessera: error: {}\n", e.what());
+    return kExitBadInput;
   } catch (const UsageError& e) {
     fmt::print(stderr, "tessera: error: {}\n", e.what());
     return kExitBadInput;

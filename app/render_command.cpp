@@ -63,7 +63,7 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
   cmd->add_option("--fov", o.fov, "Vertical field of view in degrees, overriding a perspective camera's")
       ->check(CLI::Range(0.01f, 179.0f));
   cmd->add_option("--background", o.background,
-                  "Uniform background radiance R,G,B, or 'auto': black when the scene has lights "
+                  "Uniform background radiance: R,G,B, or one number for grey, or 'auto': black when the scene has lights "
                   "(punctual or emissive), else white 1,1,1")
       ->capture_default_str();
   cmd->add_option("--envmap", o.envmap, "Equirectangular environment image (.hdr, .exr, ...) lighting the scene");
@@ -77,7 +77,7 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
       ->delimiter(',')
       ->check(CLI::IsMember({"albedo", "normal", "depth", "cost"}));
   cmd->add_flag("--half", o.half, "Write 16-bit half floats to the EXR instead of 32-bit floats");
-  cmd->add_option("--exposure", o.exposure, "Exposure in stops for display formats (PNG, JPEG, ...)")
+  cmd->add_option("--exposure", o.exposure, "Exposure in stops applied to non-EXR outputs (display formats: then sRGB encoded; .hdr/.tif/.pfm: linear)")
       ->check(CLI::Range(-64.0f, 64.0f))->capture_default_str();
   cmd->add_flag("-q,--quiet", o.quiet, "No progress and no summary (warnings and errors still print)");
 }

@@ -37,7 +37,7 @@ Environment::Environment(const EnvironmentParams& params)
 vec2 Environment::direction_to_uv(const vec3& d) const {
   // Rotate the world direction into the map's frame (the map turns by +rotate about +Y).
   const float x = cos_rot_ * d.x - sin_rot_ * d.z, z = sin_rot_ * d.x + cos_rot_ * d.z;
-  const float u = 0.5f + std::atan2(-z, -x) * (0.5f * kInvPi);
+  const float u = 0.5f + std::atan2(z, x) * (0.5f * kInvPi);
   const float v = 0.5f - std::asin(glm::clamp(d.y, -1.0f, 1.0f)) * kInvPi;
   return {u, v};
 }

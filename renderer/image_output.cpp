@@ -150,11 +150,11 @@ std::vector<std::uint8_t> to_display_rgb8(const FrameImage& image, float exposur
 }
 
 void check_output_path(const std::string& path) {
-  if (path.empty()) throw OutputError("output path is empty");
+  if (path.empty()) throw OutputPathError("output path is empty");
   const std::string ext = lower_extension(path);
   if (ext != ".exr") {
     auto writer = OIIO::ImageOutput::create(path);
-    if (!writer) throw OutputError(path + ": unknown image format '" + ext + "' (use .exr, .png, .jpg, .ppm, .hdr, .tif, ...)");
+    if (!writer) throw OutputPathError(path + ": unknown image format '" + ext + "' (use .exr, .png, .jpg, .ppm, .hdr, .tif, ...)");
   }
   check_writable_path(path);
 }

@@ -14,9 +14,17 @@
 
 namespace tessera {
 
+// Writing failed (disk full, I/O error): a failure of the system, exit code 1.
 class OutputError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
+};
+
+// The output path itself is unusable (unknown format, missing or read-only directory):
+// bad usage, exit code 2.
+class OutputPathError : public OutputError {
+ public:
+  using OutputError::OutputError;
 };
 
 struct FrameMetadata {
@@ -35,7 +43,7 @@ struct ImageWriteParams {
   FrameMetadata metadata;  // EXR header
 };
 
-// Throws OutputError when `path` cannot be written: unknown format, missing or read-only
+// Throws OutputPathError when `path` cannot be written: unknown format, missing or read-only
 // directory, a directory in the way. Call it before rendering.
 void check_output_path(const std::string& path);
 
