@@ -24,13 +24,13 @@ fs::path temporary_sibling(const fs::path& target) {
 }  // namespace
 
 void check_writable_path(const std::string& path) {
-  if (path.empty()) throw OutputError("output path is empty");
+  if (path.empty()) throw OutputPathError("output path is empty");
   const fs::path p(path);
   std::error_code ec;
-  if (fs::is_directory(p, ec)) throw OutputError(path + ": is a directory");
+  if (fs::is_directory(p, ec)) throw OutputPathError(path + ": is a directory");
   const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
-  if (!fs::is_directory(dir, ec)) throw OutputError(path + ": directory " + dir.string() + " does not exist");
-  if (::access(dir.c_str(), W_OK) != 0) throw OutputError(path + ": directory " + dir.string() + " is not writable");
+  if (!fs::is_directory(dir, ec)) throw OutputPathError(path + ": directory " + dir.string() + " does not exist");
+  if (::access(dir.c_str(), W_OK) != 0) throw OutputPathError(path + ": directory " + dir.string() + " is not writable");
 }
 
 void write_file_atomically(const std::string& path, const std::function<void(const std::string&)>& write) {

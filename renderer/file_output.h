@@ -9,7 +9,7 @@
 
 namespace tessera {
 
-// Throws OutputError when the directory of `path` is missing or not writable, or `path`
+// Throws OutputPathError (bad usage) when the directory of `path` is missing or not writable, or `path`
 // is a directory. Call it before the work that produces the file.
 void check_writable_path(const std::string& path);
 

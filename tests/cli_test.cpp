@@ -152,7 +152,7 @@ TEST(CliOutput, UnwritableDirectoryIsReportedBeforeRendering) {
   const auto start = std::chrono::steady_clock::now();
   const auto r = tessera("render " + quote(helmet) + " --width 2000 --spp 256 -o /proc/nope/out.exr");
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.exit_code, 2);  // bad usage
   EXPECT_EQ(r.err, "tessera: error: /proc/nope/out.exr: directory /proc/nope does not exist\n");
   EXPECT_LT(seconds, 30.0);
 }
@@ -160,7 +160,7 @@ TEST(CliOutput, UnwritableDirectoryIsReportedBeforeRendering) {
 TEST(CliOutput, OutputIsCheckedBeforeTheSceneIsLoaded) {
   // Both are wrong; the output path is reported, so it was checked first.
   const auto r = tessera("render /no/such/scene.glb -o /proc/nope/out.exr");
-  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.exit_code, 2);  // bad usage
   EXPECT_EQ(r.err, "tessera: error: /proc/nope/out.exr: directory /proc/nope does not exist\n");
 }
 
@@ -170,14 +170,14 @@ TEST(CliOutput, ReadOnlyDirectory) {
   fs::permissions(dir, fs::perms::owner_read | fs::perms::owner_exec);
   const auto r = render_box(dir + "/out.exr");
   fs::permissions(dir, fs::perms::owner_all);
-  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.exit_code, 2);  // bad usage
   EXPECT_EQ(r.err, "tessera: error: " + dir + "/out.exr: directory " + dir + " is not writable\n");
 }
 
 TEST(CliOutput, MissingDirectory) {
   const std::string out = test::make_temp_dir("cli-missing-dir") + "/not-made/out.exr";
   const auto r = render_box(out);
-  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.exit_code, 2);  // bad usage
   EXPECT_EQ(r.err, "tessera: error: " + out + ": directory " + fs::path(out).parent_path().string() +
                        " does not exist\n");
 }
@@ -185,7 +185,7 @@ TEST(CliOutput, MissingDirectory) {
 TEST(CliOutput, UnknownExtension) {
   const std::string out = test::make_temp_dir("cli-extension") + "/out.xyz";
   const auto r = render_box(out);
-  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.exit_code, 2);  // bad usage
   ASSERT_EQ(line_count(r.err), 1u) << r.err;
   EXPECT_EQ(r.err.rfind("tessera: error: " + out + ": unknown image format '.xyz'", 0), 0u) << r.err;
   EXPECT_FALSE(fs::exists(out));
@@ -205,7 +205,7 @@ TEST(CliOutput, FailedRunsLeaveAnExistingOutputUntouched) {
       {"render " + quote(box()) + " --width 16 --spp 1 -q --camera 7 -o " + quote(out), 2},  // after loading
       {"render " + quote(box()) + " --width 16 --spp 1 -q --background 1,2 -o " + quote(out), 2},
       {"render " + quote(malformed) + " --width 16 --spp 1 -q -o " + quote(out), 2},
-      {"render " + quote(box()) + " --width 16 --spp 1 -q -o " + quote(out) + " --preview /proc/nope/p.png", 1},
+      {"render " + quote(box()) + " --width 16 --spp 1 -q -o " + quote(out) + " --preview /proc/nope/p.png", 2},
   };
   for (const Failure& f : failures) {
     const auto r = tessera(f.command);

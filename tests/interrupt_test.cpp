@@ -15,14 +15,24 @@
 namespace tessera {
 namespace {
 
-// Starts a render that would take hours, sends `signals` after a second, waits. Tiles are
-// large (1024 px) so that the tiles in flight take a while to finish after a first signal.
+// Starts a render that would take hours, sends `signals` once it runs, waits. Tiles are
+// large (1024 px) by default so that the tiles in flight take a while to finish after a
+// first signal. `timeout` bounds the test if a signal is lost; SIGTERM because a background
+// job of a shell script starts with SIGINT ignored, and tessera leaves it so. Start-up
+// takes most of a second on a loaded machine: a signal before the handler is installed
+// kills tessera (143), and one before the first wave ends leaves nothing to write; then try
+// again, waiting longer.
 test::CommandResult interrupted_render(const std::string& out, const std::string& signals,
                                        const std::string& size = "--width 2000 --tile-size 1024") {
   const std::string scene = test::scene_path("cornell-box/cornell-box.gltf");
-  return test::run_command("'" + test::tessera_exe() + "' render '" + scene + "' -o '" + out + "' " + size +
-                           " --spp 1000000 --threads 2 & pid=$!; sleep 1; " +
-                           signals + " wait $pid");
+  test::CommandResult r;
+  for (int wait : {1, 3, 6}) {
+    r = test::run_command("timeout -s KILL 60 '" + test::tessera_exe() + "' render '" + scene + "' -o '" + out +
+                          "' " + size + " --spp 1000000 --threads 2 & pid=$!; sleep " + std::to_string(wait) + "; " +
+                          signals + " wait $pid");
+    if (r.exit_code != 143 && r.err.find("not written") == std::string::npos) break;
+  }
+  return r;
 }
 
 int exr_int_attribute(const std::string& path, const char* name) {
@@ -32,13 +42,7 @@ int exr_int_attribute(const std::string& path, const char* name) {
 
 TEST(Interrupt, FirstSignalWritesTheFinishedSamplesAndExits130) {
   const std::string out = test::make_temp_dir("interrupt-first") + "/frame.exr";
-  // On a loaded machine the signal may come before the first wave is done (then nothing is
-  // written, correctly): try again with a longer delay.
-  test::CommandResult r;
-  for (const char* wait : {"", "sleep 2;", "sleep 5;"}) {
-    r = interrupted_render(out, std::string(wait) + " kill -INT $pid;", "--width 200 --tile-size 32");
-    if (r.err.find("not written") == std::string::npos) break;
-  }
+  const test::CommandResult r = interrupted_render(out, "kill -TERM $pid;", "--width 200 --tile-size 32");
   EXPECT_EQ(r.exit_code, 130) << r.err;
   ASSERT_TRUE(std::filesystem::exists(out)) << r.err;
   EXPECT_EQ(exr_int_attribute(out, "partial"), 1);
@@ -52,8 +56,10 @@ TEST(Interrupt, SecondSignalExitsAtOnceAndKeepsTheOldFile) {
   const std::string dir = test::make_temp_dir("interrupt-second");
   const std::string out = dir + "/frame.exr";
   { std::ofstream(out) << "an older frame"; }
-  // Two signals sent together may merge into one; a short pause keeps them apart.
-  const test::CommandResult r = interrupted_render(out, "kill -TERM $pid; sleep 0.2; kill -TERM $pid;");
+  // Two signals pending together merge into one: a pause keeps them apart even when the
+  // process is not scheduled for a while. The tiles in flight (a quarter of a 2000 px image)
+  // take longer than that to finish.
+  const test::CommandResult r = interrupted_render(out, "kill -TERM $pid; sleep 1; kill -TERM $pid;");
   EXPECT_EQ(r.exit_code, 130) << r.err;
   std::ifstream in(out);
   std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
