@@ -17,7 +17,7 @@ namespace {
 
 // Starts a render that would take hours, sends `signals` once it runs, waits. Tiles are
 // large (1024 px) by default so that the tiles in flight take a while to finish after a
-// first signal. `timeout` bounds the test if a signal is lost; SIGTERM because a background
+// first signal. SIGTERM because a background
 // job of a shell script starts with SIGINT ignored, and tessera leaves it so. Start-up
 // takes most of a second on a loaded machine: a signal before the handler is installed
 // kills tessera (143), and one before the first wave ends leaves nothing to write; then try
@@ -27,9 +27,11 @@ test::CommandResult interrupted_render(const std::string& out, const std::string
   const std::string scene = test::scene_path("cornell-box/cornell-box.gltf");
   test::CommandResult r;
   for (int wait : {1, 3, 6}) {
-    r = test::run_command("timeout -s KILL 60 '" + test::tessera_exe() + "' render '" + scene + "' -o '" + out +
-                          "' " + size + " --spp 1000000 --threads 2 & pid=$!; sleep " + std::to_string(wait) + "; " +
-                          signals + " wait $pid");
+    // The signals must reach tessera itself (not a wrapper such as timeout(1), which passes
+    // on only the first); a watchdog kills it after a minute if a signal is lost.
+    r = test::run_command("'" + test::tessera_exe() + "' render '" + scene + "' -o '" + out + "' " + size +
+                          " --spp 1000000 --threads 2 & pid=$!; (sleep 60; kill -KILL $pid 2>/dev/null) & dog=$!; sleep " +
+                          std::to_string(wait) + "; " + signals + " wait $pid; rc=$?; kill $dog 2>/dev/null; exit $rc");
     if (r.exit_code != 143 && r.err.find("not written") == std::string::npos) break;
   }
   return r;
@@ -57,9 +59,10 @@ TEST(Interrupt, SecondSignalExitsAtOnceAndKeepsTheOldFile) {
   const std::string out = dir + "/frame.exr";
   { std::ofstream(out) << "an older frame"; }
   // Two signals pending together merge into one: a pause keeps them apart even when the
-  // process is not scheduled for a while. The tiles in flight (a quarter of a 2000 px image)
-  // take longer than that to finish.
-  const test::CommandResult r = interrupted_render(out, "kill -TERM $pid; sleep 1; kill -TERM $pid;");
+  // process is not scheduled for a while. The one tile in flight (a whole 3000 px image,
+  // several seconds a sample per pixel) takes longer than that to finish.
+  const test::CommandResult r =
+      interrupted_render(out, "kill -TERM $pid; sleep 1; kill -TERM $pid;", "--width 3000 --tile-size 4096");
   EXPECT_EQ(r.exit_code, 130) << r.err;
   std::ifstream in(out);
   std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
