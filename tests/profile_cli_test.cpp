@@ -59,7 +59,7 @@ TEST(ProfileCli, RenderWritesStatsTraceHeatmapAndCostLayer) {
 TEST(ProfileCli, UnwritableStatsPathFailsBeforeRendering) {
   const test::CommandResult r = test::run_command(test::tessera_exe() + " render " + cornell() +
                                                   " --width 16 --spp 1 -o /tmp/x.exr --stats-json /nonexistent/s.json");
-  EXPECT_NE(r.exit_code, 0);
+  EXPECT_EQ(r.exit_code, 2);  // a bad output path is bad usage
   EXPECT_NE(r.err.find("/nonexistent/s.json"), std::string::npos) << r.err;
   EXPECT_EQ(r.err.find("M samples/s"), std::string::npos) << "rendered anyway";
 }
