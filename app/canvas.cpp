@@ -69,8 +69,10 @@ void Canvas::text(int x, int y, const std::string& s, int scale, Rgb8 c) {
     if (!rows) continue;
     const int gx = x + static_cast<int>(i) * 6 * scale;
     for (int r = 0; r < kFontHeight; ++r)
-      for (int col = 0; col < 5; ++col)
-        if (rows[r * 5 + col] == '#') fill_rect(gx + col * scale, y + r * scale, gx + (col + 1) * scale, y + (r + 1) * scale, c);
+      for (int col = 0; col < 5; ++col) {
+        const int px = gx + col * scale, py = y + r * scale;
+        if (rows[r * 5 + col] == '#') fill_rect(px, py, px + scale, py + scale, c);
+      }
   }
 }
 

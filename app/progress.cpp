@@ -53,14 +53,14 @@ void ProgressDisplay::draw(bool final_line) {
   } else if (terminal_) {
     constexpr int kWidth = 30;
     const int filled = static_cast<int>(fraction * kWidth);
-    line = fmt::format("\r{}[{}{}] {:5.1f}%  {} elapsed  ETA {}  {:.2f} M samples/s", options_.label, std::string(filled, '#'),
-                       std::string(kWidth - filled, '.'), 100.0 * fraction, format_duration(elapsed),
-                       format_duration(eta), rate * 1e-6);
+    line = fmt::format("\r{}[{}{}] {:5.1f}%  {} elapsed  ETA {}  {:.2f} M samples/s", options_.label,
+                       std::string(filled, '#'), std::string(kWidth - filled, '.'), 100.0 * fraction,
+                       format_duration(elapsed), format_duration(eta), rate * 1e-6);
     if (final_line) line += "\n";
   } else {
     if (final_line) return;  // the summary follows; a log needs no closing bar
-    line = fmt::format("{}rendering: {:.1f}% done, {} elapsed, ETA {}, {:.2f} M samples/s\n", options_.label, 100.0 * fraction,
-                       format_duration(elapsed), format_duration(eta), rate * 1e-6);
+    line = fmt::format("{}rendering: {:.1f}% done, {} elapsed, ETA {}, {:.2f} M samples/s\n", options_.label,
+                       100.0 * fraction, format_duration(elapsed), format_duration(eta), rate * 1e-6);
   }
   std::fputs(line.c_str(), stderr);
   std::fflush(stderr);

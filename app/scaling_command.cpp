@@ -132,7 +132,8 @@ int run_scaling(const ScalingOptions& o) {
                                          runs[i].threads, runs[i].threads == 1 ? "" : "s");
     RenderResult r;
     {
-      ProgressDisplay progress(monitor, {static_cast<std::uint64_t>(m.width) * m.height * o.spp, o.quiet, name + " ", true});
+      const std::uint64_t total = static_cast<std::uint64_t>(m.width) * m.height * o.spp;
+      ProgressDisplay progress(monitor, {total, o.quiet, name + " ", true});
       r = render_frame(*m.scene, m.camera, settings, &monitor);
     }
     if (r.stats.cancelled) break;
@@ -158,7 +159,8 @@ int run_scaling(const ScalingOptions& o) {
     for (double w : results[{s, 1}].wall) one_thread.push_back(w);
   report.baseline = median(one_thread);
   for (const std::string& s : report.schedulers)
-    for (int n = 1; n <= report.threads_max; ++n) report.rows.push_back(summarize(s, n, results[{s, n}], report.baseline));
+    for (int n = 1; n <= report.threads_max; ++n)
+      report.rows.push_back(summarize(s, n, results[{s, n}], report.baseline));
 
   const std::filesystem::path out(dir);
   const std::string md = scaling_markdown(report);

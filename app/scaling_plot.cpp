@@ -95,8 +95,10 @@ std::string scaling_svg(const ScalingReport& r) {
   std::string s = fmt::format(
       "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{0}\" height=\"{1}\" viewBox=\"0 0 {0} {1}\" "
       "font-family=\"sans-serif\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n", kWidth, kHeight);
-  s += text(kLeft, 24, fmt::format("{}: speedup against threads ({}x{}, {} spp, {} cores)", xml_escape(r.scene), r.width, r.height,
-                                   r.spp, r.cores), "start", 15);
+  s += text(kLeft, 24,
+            fmt::format("{}: speedup against threads ({}x{}, {} spp, {} cores)", xml_escape(r.scene), r.width,
+                        r.height, r.spp, r.cores),
+            "start", 15);
   s += grid_and_ticks(a);
   s += line(a.px(1), a.py(1), a.px(a.x_max), a.py(a.x_max), "stroke=\"#888\" stroke-dasharray=\"5 4\"");
   if (r.cores >= 1 && r.cores < a.x_max) {

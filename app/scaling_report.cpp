@@ -13,7 +13,8 @@ std::string scaling_markdown(const ScalingReport& r) {
   md += "| scheduler | threads | wall s (median) | min..max s | speedup | speedup / threads | "
         "parallel efficiency | imbalance | tail s | on-CPU |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const ScalingRow& row : r.rows)
-    md += fmt::format("| {} | {} | {:.3f} | {:.3f}..{:.3f} | {:.2f} | {:.1f}% | {:.1f}% | {:.3f} | {:.3f} | {:.0f}% |\n",
+    md += fmt::format("| {} | {} | {:.3f} | {:.3f}..{:.3f} | {:.2f} | {:.1f}% | {:.1f}% | {:.3f} | {:.3f} "
+                      "| {:.0f}% |\n",
                       row.scheduler, row.threads, row.wall, row.wall_min, row.wall_max, row.speedup,
                       100.0 * row.speedup / row.threads, 100.0 * row.efficiency, row.imbalance, row.tail,
                       100.0 * row.cpu_share);

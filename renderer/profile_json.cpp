@@ -69,7 +69,8 @@ json runs_json(const FrameProfile& p) {
     if (r.thread < 0) continue;
     const WorkItem& item = p.plan.items[r.item];
     out.push_back({{"tile", item.tile}, {"rect", rect_json(item.rect)}, {"wave", r.wave}, {"thread", r.thread},
-                   {"start", r.start}, {"end", r.end}, {"cpu_seconds", r.cpu}, {"samples", r.samples}, {"rays", r.rays}});
+                   {"start", r.start}, {"end", r.end}, {"cpu_seconds", r.cpu}, {"samples", r.samples},
+                   {"rays", r.rays}});
   }
   return out;
 }

@@ -21,8 +21,9 @@ inline const RenderScene& schedule_room() {
     add_mesh(d, make_quad({0, 0, -1}, {1, 0, 0}, {0, 1, 0}, white));
     add_mesh(d, make_quad({1, 0, 0}, {0, 0, -1}, {0, 1, 0}, green));
     add_mesh(d, make_quad({0, 0.99f, 0}, {0.3f, 0, 0}, {0, 0, 0.3f}, light));
+    const glm::mat4 one(1.0f);
     add_mesh(d, make_sphere({0, 0, 0}, 0.25f, 2, white),
-             {glm::translate(glm::mat4(1.0f), {-0.4f, -0.7f, 0.2f}), glm::translate(glm::mat4(1.0f), {0.5f, 0.5f, -0.3f})});
+             {glm::translate(one, {-0.4f, -0.7f, 0.2f}), glm::translate(one, {0.5f, 0.5f, -0.3f})});
     EnvironmentParams env;
     env.background = vec3(0.1f);
     return new RenderScene(std::move(d), env);
