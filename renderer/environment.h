@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "renderer/distribution.h"
 #include "renderer/math.h"
 
 namespace tessera {
@@ -24,6 +25,13 @@ class Environment {
   vec3 radiance(const vec3& direction) const;
   bool has_image() const { return width_ > 0; }
 
+  // Importance sampling of the image: a direction in proportion to radiance x sin(theta)
+  // (a 2D piecewise-constant distribution over the equirectangular texels), its
+  // solid-angle pdf, and the pdf of any direction. Only when has_image().
+  vec3 sample(const vec2& u, float& pdf) const;
+  float pdf(const vec3& direction) const;
+  vec3 uv_to_direction(const vec2& uv) const;
+
   // Image coordinates in [0,1]^2 (u right, v down) of a world direction: the centre of the
   // image faces +X, u grows towards -Z (as seen from above, clockwise), the top row is +Y.
   // This is Blender's equirectangular mapping after its glTF axis conversion (Blender
@@ -36,6 +44,10 @@ class Environment {
   float cos_rot_ = 1.0f, sin_rot_ = 0.0f;
   int width_ = 0, height_ = 0;
   std::vector<vec3> texels_;  // linear RGB, top row first
+  Distribution1D rows_;  // marginal over rows
+  std::vector<Distribution1D> columns_;  // conditional over columns, per row
+
+  void build_distribution();
 };
 
 }  // namespace tessera

@@ -41,29 +41,17 @@ AreaLights::AreaLights(const SceneDescription& scene, const SceneGeometry& geome
       power.push_back(std::isfinite(area) ? double(area) * le * (m.double_sided ? 2.0 : 1.0) : 0.0);
     }
   }
-  double total = 0.0;
-  for (double w : power) total += w;
-  if (!(total > 0.0)) {
+  by_power_ = Distribution1D(std::move(power));
+  if (by_power_.empty()) {
     triangles_.clear();
     first_.clear();
-    return;
   }
-  pmf_.resize(power.size());
-  cdf_.resize(power.size());
-  double running = 0.0;
-  for (std::size_t i = 0; i < power.size(); ++i) {
-    pmf_[i] = static_cast<float>(power[i] / total);
-    running += power[i];
-    cdf_[i] = static_cast<float>(running / total);
-  }
-  cdf_.back() = 1.0f;
 }
 
 bool AreaLights::sample(const vec3& p, float u_select, const vec2& u_point, AreaLightSample& s) const {
   if (triangles_.empty()) return false;
-  const std::size_t i = std::min<std::size_t>(
-      std::upper_bound(cdf_.begin(), cdf_.end(), u_select) - cdf_.begin(), cdf_.size() - 1);
-  if (pmf_[i] <= 0.0f) return false;
+  const std::size_t i = by_power_.sample(u_select);
+  if (by_power_.pmf(i) <= 0.0f) return false;
   const Triangle& tri = triangles_[i];
   // Uniform point on the triangle (square-root parameterisation).
   const float su = std::sqrt(u_point.x);
@@ -87,7 +75,7 @@ bool AreaLights::sample(const vec3& p, float u_select, const vec2& u_point, Area
     at.t = s.distance;
     s.radiance = materials_.evaluate(geometry_.surface(Ray{p, s.wi}, at)).emission;
   }
-  s.pdf = pmf_[i] * dist2 / (tri.area * abs_cos);
+  s.pdf = by_power_.pmf(i) * dist2 / (tri.area * abs_cos);
   return std::isfinite(s.pdf) && s.pdf > 0.0f;
 }
 
@@ -95,10 +83,10 @@ float AreaLights::pdf(const HitRecord& hit, const SurfaceHit& surface, const vec
   const auto it = first_.find(list_key(hit.geom, hit.instance));
   if (it == first_.end()) return 0.0f;
   const std::uint32_t i = it->second + hit.prim;
-  if (i >= triangles_.size() || pmf_[i] <= 0.0f) return 0.0f;
+  if (i >= triangles_.size() || by_power_.pmf(i) <= 0.0f) return 0.0f;
   const float abs_cos = std::fabs(glm::dot(surface.ng, direction));
   if (!(abs_cos > 0.0f)) return 0.0f;
-  return pmf_[i] * surface.t * surface.t / (triangles_[i].area * abs_cos);
+  return by_power_.pmf(i) * surface.t * surface.t / (triangles_[i].area * abs_cos);
 }
 
 }  // namespace tessera

@@ -6,6 +6,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "renderer/distribution.h"
 #include "renderer/integrator/materials.h"
 #include "renderer/scene_geometry.h"
 
@@ -52,8 +53,7 @@ class AreaLights {
   const SceneGeometry& geometry_;
   const MaterialTable& materials_;
   std::vector<Triangle> triangles_;
-  std::vector<float> cdf_;  // cumulative selection probability, last = 1
-  std::vector<float> pmf_;
+  Distribution1D by_power_;
   std::unordered_map<std::uint64_t, std::uint32_t> first_;  // list_key -> its first triangle
 };
 

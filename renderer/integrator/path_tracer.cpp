@@ -61,6 +61,22 @@ vec3 area_light_contribution(const RenderScene& scene, const ShadingContext& c, 
   return f * ls.radiance * (std::fabs(wi_local.z) * weight / ls.pdf);
 }
 
+// One direction towards the environment image, weighted against BSDF sampling (MIS).
+vec3 environment_contribution(const RenderScene& scene, const ShadingContext& c, SampleStream& rng,
+                              PathCounters& counters) {
+  const vec2 u = rng.next2();
+  float pdf;
+  const vec3 wi = scene.environment.sample(u, pdf);
+  vec3 wi_local;
+  if (!(pdf > 0.0f) || !c.usable(wi, wi_local)) return vec3(0.0f);
+  const vec3 f = c.bsdf.eval(c.wo_local, wi_local);
+  if (f == vec3(0.0f)) return vec3(0.0f);
+  ++counters.rays;
+  if (scene.geometry->occluded(c.origin_towards(wi), wi, std::numeric_limits<float>::infinity())) return vec3(0.0f);
+  const float weight = power_heuristic(pdf, c.bsdf.pdf(c.wo_local, wi_local));
+  return f * scene.environment.radiance(wi) * (std::fabs(wi_local.z) * weight / pdf);
+}
+
 }  // namespace
 
 vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ray,
@@ -69,13 +85,17 @@ vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ra
   vec3 absorption(0.0f);  // of the volume the ray travels in (Beer-Lambert); 0 = none
   float bsdf_pdf = 0.0f;  // solid-angle pdf of the direction that led here; 0 = camera ray
   const bool light_sampling = !scene.area_lights->empty();
+  const bool environment_sampling = scene.environment.has_image();
   for (int bounce = 0;; ++bounce) {
     HitRecord hit;
     ++counters.rays;
     const bool found = scene.geometry->intersect(ray, hit);
     if (absorption != vec3(0.0f)) throughput *= found ? glm::exp(-absorption * hit.t) : vec3(0.0f);
     if (!found) {
-      radiance += throughput * scene.environment.radiance(ray.direction);
+      const float weight = bsdf_pdf > 0.0f && environment_sampling
+                               ? power_heuristic(bsdf_pdf, scene.environment.pdf(ray.direction))
+                               : 1.0f;
+      radiance += throughput * scene.environment.radiance(ray.direction) * weight;
       break;
     }
     SurfaceHit s = scene.geometry->surface(ray, hit);
@@ -111,6 +131,7 @@ vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ra
     const ShadingContext ctx{s, frame, bsdf, wo_local};
     if (!scene.description.lights.empty()) radiance += throughput * punctual_light_contribution(scene, ctx, counters);
     if (light_sampling) radiance += throughput * area_light_contribution(scene, ctx, rng, counters);
+    if (environment_sampling) radiance += throughput * environment_contribution(scene, ctx, rng, counters);
 
     BsdfSample bs;
     const float u_lobe = rng.next();
