@@ -29,6 +29,9 @@ struct RenderOptions {
   bool half = false;
   float exposure = 0.0f;
   bool quiet = false;
+  double time_limit = 0.0;  // seconds of sampling, 0: none
+  double checkpoint = 0.0;  // seconds between checkpoints, 0: none
+  std::string resume;  // a partial EXR to continue
 };
 
 struct InfoOptions {

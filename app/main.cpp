@@ -9,6 +9,7 @@
 #include "app/exit_codes.h"
 #include "app/interrupt.h"
 #include "renderer/image_output.h"
+#include "renderer/resume_layers.h"
 #include "scene_io/load_error.h"
 
 int main(int argc, char** argv) {
@@ -51,6 +52,9 @@ int main(int argc, char** argv) {
     fmt::print(stderr, "tessera: error: {}\n", e.what());
     return kExitBadInput;
   } catch (const OutputPathError& e) {  // checked before rendering
+    fmt::print(stderr, "tessera: error: {}\n", e.what());
+    return kExitBadInput;
+  } catch (const ResumeError& e) {  // --resume: not resumable, damaged
     fmt::print(stderr, "tessera: error: {}\n", e.what());
     return kExitBadInput;
   } catch (const UsageError& e) {

@@ -9,11 +9,14 @@
 #include "app/commands.h"
 #include "app/exit_codes.h"
 #include "app/interrupt.h"
+#include "app/memory_check.h"
 #include "app/profile_outputs.h"
 #include "app/progress.h"
 #include "app/render_setup.h"
+#include "app/resume_settings.h"
 #include "renderer/image_output.h"
 #include "renderer/render.h"
+#include "renderer/resume_layers.h"
 #include "scene_io/gltf_loader.h"
 
 namespace tessera {
@@ -80,6 +83,18 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
   cmd->add_option("--exposure", o.exposure, "Exposure in stops applied to non-EXR outputs (display formats: then sRGB encoded; .hdr/.tif/.pfm: linear)")
       ->check(CLI::Range(-64.0f, 64.0f))->capture_default_str();
   cmd->add_flag("-q,--quiet", o.quiet, "No progress and no summary (warnings and errors still print)");
+  cmd->add_option("--time-limit", o.time_limit,
+                  "Stop starting tiles after this many seconds of sampling (the first sample wave always finishes); "
+                  "--spp is then the most a pixel gets. The frame is written, partial and resumable")
+      ->check(CLI::Range(0.001, 1e9));
+  cmd->add_option("--checkpoint", o.checkpoint,
+                  "Rewrite the outputs (atomically) with what is done, between sample waves, at most every this "
+                  "many seconds; an EXR checkpoint can be continued with --resume")
+      ->check(CLI::Range(0.001, 1e9));
+  cmd->add_option("--resume", o.resume,
+                  "Continue a partial or checkpointed EXR written by tessera (same scene file and same options "
+                  "affecting pixels, else refused); the result is the same bit for bit as an uninterrupted render "
+                  "[-o default: this file]");
 }
 
 namespace {
@@ -104,8 +119,16 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
+bool is_exr(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".exr";
+}
+
+// `partial`: fewer samples than --spp somewhere; such a frame also carries the film to
+// resume from when it is an EXR.
 ImageWriteParams write_params(const RenderOptions& o, const RenderSettings& settings, const RenderCamera& rc,
-                              const Camera& camera, const RenderStats& stats) {
+                              const Camera& camera, const RenderStats& stats, bool partial) {
   ImageWriteParams write;
   write.half = o.half;
   write.exposure = o.exposure;
@@ -120,7 +143,8 @@ ImageWriteParams write_params(const RenderOptions& o, const RenderSettings& sett
   meta.world_to_ndc = rc.world_to_ndc();
   meta.scene_path = o.scene_path;
   meta.camera_name = camera.name;
-  meta.partial = stats.cancelled;
+  meta.partial = partial;
+  meta.target_spp = settings.spp;
   return write;
 }
 
@@ -135,18 +159,41 @@ void print_summary(const RenderOptions& o, const std::string& output, const Rend
              s.rays / s.seconds * 1e-6, scheduler_name(settings.scheduler), tile_order_name(settings.tile_order),
              100.0 * s.efficiency, s.imbalance,
              s.dropped_samples ? fmt::format(", {} non-finite samples dropped", s.dropped_samples) : "");
+  std::string why;
+  if (s.cancelled) why = fmt::format("interrupted at {} spp; ", spp);
+  else if (s.time_limited) why = fmt::format("time limit reached at {} spp; ", spp);
+  if (s.resumed_samples > 0) why = fmt::format("resumed {}; ", o.resume) + why;
   if (spp == 0)
     fmt::print(stderr, "tessera: interrupted before every pixel had a sample: {} not written\n", output);
   else
-    fmt::print(stderr, "tessera: {}wrote {}{}\n", s.cancelled ? fmt::format("interrupted at {} spp; ", spp) : "",
-               output, o.preview.empty() ? "" : " and " + o.preview);
+    fmt::print(stderr, "tessera: {}wrote {}{}\n", why, output, o.preview.empty() ? "" : " and " + o.preview);
+}
+
+// Writes -o and --preview; an EXR that is partial also carries the film to resume from.
+void write_outputs(const std::string& output, const std::string& preview, const FrameImage& image,
+                   ImageWriteParams params, const FilmState& film, const std::string& resume_text) {
+  if (params.metadata.partial && is_exr(output)) {
+    params.resume_film = &film;
+    params.resume_settings = resume_text;
+  }
+  write_image(output, image, params);
+  params.resume_film = nullptr;
+  if (!preview.empty()) write_image(preview, image, params);
+}
+
+std::uint64_t samples_in(const FilmState& film) {
+  std::uint64_t n = 0;
+  for (std::uint32_t s : film.samples) n += s;
+  return n;
 }
 
 }  // namespace
 
 int run_render(const RenderOptions& o) {
-  const std::string output = o.output.empty() ? default_output(o.scene_path) : o.output;
+  const std::string output = !o.output.empty() ? o.output : !o.resume.empty() ? o.resume : default_output(o.scene_path);
   check_output_path(output);  // before any work: a bad path costs nothing
+  std::string resumed_settings;  // read first: a file that cannot be resumed costs nothing
+  if (!o.resume.empty()) resumed_settings = read_resume_settings(o.resume);
   if (!o.preview.empty()) check_output_path(o.preview);
   const ProfileOutputs profile_outputs{o.stats_json, o.trace, o.heatmap};
   check_profile_outputs(profile_outputs);
@@ -183,6 +230,7 @@ int run_render(const RenderOptions& o) {
   settings.scheduler = parse_scheduler(o.scheduler);
   settings.tile_order = parse_tile_order(o.tile_order);
   settings.record_tiles = profile_outputs.needs_tile_records();
+  settings.time_limit = o.time_limit;
 
   EnvironmentParams env;
   env.background = parse_background(o.background, scene_has_lights(loaded.scene));
@@ -195,6 +243,7 @@ int run_render(const RenderOptions& o) {
       for (const TriangleMesh& p : m.primitives) n += p.triangle_count();
     return n;
   }();
+  check_render_memory(estimate_render_memory(loaded.scene, settings.width, settings.height, settings.aovs, o.envmap));
   t0 = std::chrono::steady_clock::now();
   RenderScene scene(std::move(loaded.scene), env);
   const double setup_seconds = seconds_since(t0);
@@ -203,22 +252,37 @@ int run_render(const RenderOptions& o) {
   RenderCamera rc = make_camera(camera, settings.width, settings.height, cam_params);
   if (o.aperture > 0.0f && o.focus_distance <= 0.0f) rc.focus_distance = autofocus_distance(scene, rc);
 
+  const std::string resume_text = resume_settings(o, settings, rc, env);
+  FilmState resumed;
+  if (!o.resume.empty()) {
+    check_resume_settings(o.resume, resumed_settings, resume_text);
+    resumed = read_resume_film(o.resume, settings.width, settings.height, settings.aovs, settings.spp);
+  }
+  if (o.checkpoint > 0.0) {
+    settings.checkpoint_interval = o.checkpoint;
+    settings.on_checkpoint = [&](const Film& film, const RenderStats& stats) {
+      write_outputs(output, o.preview, film.resolve(), write_params(o, settings, rc, camera, stats, true),
+                    film.state(), resume_text);
+    };
+  }
+
   RenderMonitor monitor;
   InterruptHandler interrupts(monitor.cancel);  // stays installed while writing
   RenderResult result;
   {
-    const std::uint64_t total = static_cast<std::uint64_t>(settings.width) * settings.height * settings.spp;
+    const std::uint64_t total =
+        static_cast<std::uint64_t>(settings.width) * settings.height * settings.spp - samples_in(resumed);
     ProgressDisplay progress(monitor, {total, o.quiet, "", false});
-    result = render_frame(scene, rc, settings, &monitor);
+    result = render_frame(scene, rc, settings, &monitor, o.resume.empty() ? nullptr : &resumed);
   }
   if (cost_layer) result.image.cost = tile_cost_image(result.profile);
   write_profile_outputs(profile_outputs, result,
                         fmt::format("{}: {}, {}, {} threads", std::filesystem::path(o.scene_path).filename().string(),
                                     o.scheduler, o.tile_order, result.stats.threads));
   if (result.image.samples_per_pixel > 0) {
-    const ImageWriteParams write = write_params(o, settings, rc, camera, result.stats);
-    write_image(output, result.image, write);
-    if (!o.preview.empty()) write_image(o.preview, result.image, write);
+    const bool partial = result.image.samples_per_pixel < settings.spp;
+    write_outputs(output, o.preview, result.image, write_params(o, settings, rc, camera, result.stats, partial),
+                  result.film, resume_text);
   }
   if (!o.quiet) {
     fmt::print(stderr, "tessera: {}: {} triangles; load {:.2f} s, BVH and textures {:.2f} s (BVH {:.2f} s), render {:.2f} s\n",

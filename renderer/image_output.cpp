@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 
 #include <Imath/half.h>
 #include <OpenEXR/ImfChannelList.h>
@@ -18,6 +19,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include "renderer/file_output.h"
+#include "renderer/resume_layers.h"
 #include "renderer/texture.h"
 
 #ifndef TESSERA_VERSION
@@ -89,6 +91,7 @@ void write_exr(const std::string& path, const FrameImage& img, const ImageWriteP
   header.insert("worldToCamera", Imf::M44fAttribute(to_imath(m.world_to_camera)));
   header.insert("worldToNDC", Imf::M44fAttribute(to_imath(m.world_to_ndc)));
   header.insert("partial", Imf::IntAttribute(m.partial ? 1 : 0));
+  if (m.target_spp > 0) header.insert("targetSamplesPerPixel", Imf::IntAttribute(m.target_spp));
   header.insert("software", Imf::StringAttribute("tessera " + tessera_version()));
   header.insert("tesseraVersion", Imf::StringAttribute(tessera_version()));
   if (!m.scene_path.empty()) header.insert("scene", Imf::StringAttribute(m.scene_path));
@@ -109,6 +112,11 @@ void write_exr(const std::string& path, const FrameImage& img, const ImageWriteP
       size = sizeof(float);
     }
     fb.insert(ch.name, Imf::Slice(type, base, size, size * img.width));
+  }
+  std::optional<ResumeLayers> resume;
+  if (params.resume_film) {
+    resume.emplace(*params.resume_film, params.resume_settings);
+    resume->insert_into(header, fb);
   }
   Imf::OutputFile file(path.c_str(), header);
   file.setFrameBuffer(fb);

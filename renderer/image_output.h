@@ -35,12 +35,17 @@ struct FrameMetadata {
   glm::mat4 world_to_camera{1.0f}, world_to_ndc{1.0f};
   std::string scene_path, camera_name;
   bool partial = false;  // stopped early: samplesPerPixel tells how far it got
+  int target_spp = 0;  // --spp: what a finished render reaches (0: not written)
 };
 
 struct ImageWriteParams {
   bool half = false;  // EXR: 16-bit half floats instead of 32-bit floats
   float exposure = 0.0f;  // display formats: stops applied before sRGB encoding
   FrameMetadata metadata;  // EXR header
+  // EXR: also store the film losslessly with these settings lines, so that --resume can
+  // continue it (see renderer/resume_layers.h). Null: a plain frame.
+  const FilmState* resume_film = nullptr;
+  std::string resume_settings;
 };
 
 // Throws OutputPathError when `path` cannot be written: unknown format, missing or read-only

@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <functional>
 
 #include "renderer/camera.h"
 #include "renderer/film.h"
@@ -12,6 +13,8 @@
 #include "renderer/render_stats.h"
 
 namespace tessera {
+
+struct RenderStats;
 
 struct RenderSettings {
   int width = 640, height = 360;
@@ -24,6 +27,13 @@ struct RenderSettings {
   SchedulerKind scheduler = SchedulerKind::tiles;
   TileOrder tile_order = TileOrder::scanline;
   bool record_tiles = false;  // keep a TileRecord per item and wave in RenderResult::profile
+  // Stop starting tiles once this many seconds of sampling have passed (0: no limit); the
+  // first wave of a run always finishes, so there is an image. spp is then the most.
+  double time_limit = 0.0;
+  // Called between waves, at most every checkpoint_interval seconds, with the film so far
+  // (the last wave excepted: the finished frame follows at once).
+  double checkpoint_interval = 0.0;
+  std::function<void(const Film&, const RenderStats&)> on_checkpoint;
 };
 
 // Live counters a progress display may poll while rendering, and a way to stop early
@@ -37,9 +47,12 @@ struct RenderMonitor {
 
 struct RenderStats {
   double seconds = 0.0;
-  std::uint64_t camera_samples = 0, rays = 0, dropped_samples = 0;
+  std::uint64_t camera_samples = 0, rays = 0;  // of this run
+  std::uint64_t dropped_samples = 0;  // non-finite samples left out, resumed runs included
   int threads = 0;
-  bool cancelled = false;
+  bool cancelled = false;  // the monitor's cancel flag stopped it
+  bool time_limited = false;  // the time limit stopped it before spp
+  std::uint64_t resumed_samples = 0;  // camera samples the film held before this run
   double efficiency = 1.0, imbalance = 1.0;  // see LoadBalance
 };
 
@@ -47,10 +60,15 @@ struct RenderResult {
   FrameImage image;
   RenderStats stats;
   FrameProfile profile;
+  FilmState film;  // the sums behind `image`: what a checkpoint stores to resume from
 };
 
+// `resume`, when given, is a film of the same size and AOVs from an earlier, stopped run of
+// the same settings (moved from): every pixel continues from its own sample count, with the
+// waves the uninterrupted render would have run, so the result is the same bit for bit.
 RenderResult render_frame(const RenderScene& scene, const RenderCamera& camera,
-                          const RenderSettings& settings, RenderMonitor* monitor = nullptr);
+                          const RenderSettings& settings, RenderMonitor* monitor = nullptr,
+                          FilmState* resume = nullptr);
 
 // The thread count --threads 0 means.
 int default_thread_count();

@@ -1,0 +1,84 @@
+#include "app/resume_settings.h"
+
+#include <fstream>
+#include <sstream>
+#include <utility>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "app/exit_codes.h"
+#include "renderer/resume_layers.h"
+
+namespace tessera {
+
+namespace {
+
+// fmt's {} prints the shortest text that reads back as the same float: exact and stable.
+std::string floats(const float* v, int n) {
+  std::string s;
+  for (int i = 0; i < n; ++i) s += (i ? "," : "") + fmt::format("{}", v[i]);
+  return s;
+}
+
+std::string camera_lines(const RenderCamera& c) {
+  const float scalars[] = {c.tan_half_fov_y, c.half_height, c.aspect, c.lens_radius, c.focus_distance, c.znear, c.zfar};
+  return fmt::format("camera-projection={}\ncamera-to-world={}\ncamera-lens={}\n",
+                     c.projection == Camera::Projection::Perspective ? "perspective" : "orthographic",
+                     floats(&c.camera_to_world[0][0], 16), floats(scalars, 7));
+}
+
+std::vector<std::pair<std::string, std::string>> parse_lines(const std::string& text) {
+  std::vector<std::pair<std::string, std::string>> out;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    const std::size_t eq = line.find('=');
+    if (eq != std::string::npos) out.emplace_back(line.substr(0, eq), line.substr(eq + 1));
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string hash_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw UsageError(path + ": cannot be read to fingerprint it");
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  return fnv1a_hex(bytes.str());
+}
+
+std::string resume_settings(const RenderOptions& o, const RenderSettings& s, const RenderCamera& camera,
+                            const EnvironmentParams& env) {
+  std::string aovs;
+  if (s.aovs.albedo) aovs += "albedo,";
+  if (s.aovs.normal) aovs += "normal,";
+  if (s.aovs.depth) aovs += "depth,";
+  if (!aovs.empty()) aovs.pop_back();
+  std::string text = fmt::format("format=1\nscene-bytes={}\nscene={}\n", hash_file(o.scene_path), o.scene);
+  text += fmt::format("width={}\nheight={}\nspp={}\nmax-bounces={}\nseed={}\n", s.width, s.height, s.spp,
+                      s.max_bounces, s.seed);
+  text += camera_lines(camera);
+  text += fmt::format("background={}\n", floats(&env.background.r, 3));
+  text += fmt::format("envmap-bytes={}\nenvmap-scale={}\nenvmap-rotate={}\n",
+                      env.image_path.empty() ? "none" : hash_file(env.image_path), env.scale, env.rotate_degrees);
+  text += fmt::format("aovs={}\n", aovs.empty() ? "none" : aovs);
+  return text;
+}
+
+void check_resume_settings(const std::string& path, const std::string& stored, const std::string& current) {
+  const auto then = parse_lines(stored);
+  for (const auto& [key, now] : parse_lines(current)) {
+    std::string was = "(nothing)";
+    for (const auto& [k, v] : then)
+      if (k == key) was = v;
+    if (was == now) continue;
+    if (key == "scene-bytes")
+      throw UsageError(fmt::format("--resume {}: was rendered from another scene file (its bytes hash to {}, this "
+                                   "scene's to {})", path, was, now));
+    throw UsageError(fmt::format("--resume {}: {} differs: the file has {}, this render {}; resume with the "
+                                 "options it was started with", path, key, was, now));
+  }
+}
+
+}  // namespace tessera

@@ -1,0 +1,27 @@
+// What a resumable EXR records about how it was made, and the check that a render asked to
+// --resume it is the same render: the same scene file (a hash of its bytes), the same
+// settings that affect pixels (size, spp, bounces, seed, the resolved camera and lens, the
+// background or environment map and its bytes, the AOVs). Threads, tile size, scheduler,
+// tile order, --half and --exposure may differ: they never change the sums.
+#pragma once
+
+#include <string>
+
+#include "app/commands.h"
+#include "renderer/camera.h"
+#include "renderer/environment.h"
+#include "renderer/render.h"
+
+namespace tessera {
+
+// "key=value" lines, one per setting, in a fixed order.
+std::string resume_settings(const RenderOptions& options, const RenderSettings& settings, const RenderCamera& camera,
+                            const EnvironmentParams& environment);
+
+// Throws UsageError naming `path` and the first setting that differs.
+void check_resume_settings(const std::string& path, const std::string& stored, const std::string& current);
+
+// A 64-bit FNV-1a hash of a file's bytes, as hex. Throws UsageError when it cannot be read.
+std::string hash_file(const std::string& path);
+
+}  // namespace tessera

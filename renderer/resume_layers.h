@@ -1,0 +1,58 @@
+// What a partial or checkpointed EXR carries so that `--resume` continues it bit for bit:
+// the film's per-pixel sums and sample counts, losslessly, and the settings it was made
+// with. The radiance sums are doubles; EXR has no double channels, so each double's 64 bits
+// are stored as two UINT channels (high and low word): exact, unlike a hi/lo float pair,
+// whose 48 bits of mantissa drop 5. The first-hit sums are floats and stored as FLOAT. All
+// live in the layer `tessera.` that image viewers show apart from RGBA:
+//   tessera.samples (UINT)                    samples each pixel got
+//   tessera.sum.{R,G,B}.{hi,lo} (UINT)        radiance sums, the bits of a double
+//   tessera.albedo.{R,G,B}, tessera.normal.{X,Y,Z}, tessera.depth (FLOAT), tessera.hits (UINT)
+//                                             first-hit sums, when those AOVs are on
+// and in the header: tesseraResume (the settings, "key=value" lines), tesseraFingerprint (a
+// hash of those lines) and droppedSamples.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "renderer/film.h"
+
+#include <OpenEXR/ImfForward.h>
+
+namespace tessera {
+
+// The file cannot be resumed: not tessera's, no resume data, damaged. Bad input (exit 2).
+class ResumeError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// The EXR channels of a film, converted for writing; keeps the buffers the frame buffer
+// points into alive until the file is written.
+class ResumeLayers {
+ public:
+  ResumeLayers(const FilmState& film, std::string settings);
+  ~ResumeLayers();
+  void insert_into(Imf::Header& header, Imf::FrameBuffer& frame_buffer);
+
+ private:
+  struct Buffers;
+  std::unique_ptr<Buffers> buffers_;
+  std::string settings_;
+};
+
+// A 64-bit FNV-1a hash, printed as 16 hex digits: the fingerprint of settings and files.
+std::string fnv1a_hex(const std::string& bytes);
+
+// The settings lines `path` was written with (its header only). Throws ResumeError naming
+// the file when it has none.
+std::string read_resume_settings(const std::string& path);
+
+// The film `path` carries, which must be width x height with these AOVs, every pixel's
+// count the end of a sample wave of `spp` (as a stopped render leaves them). Read once the
+// settings matched. Throws ResumeError naming the file.
+FilmState read_resume_film(const std::string& path, int width, int height, AovSelection aovs, int spp);
+
+}  // namespace tessera

@@ -1,0 +1,180 @@
+// tessera render --time-limit, --checkpoint and --resume from the command line: a render
+// stopped by its time limit and resumed (with other threads and tiles) writes the same
+// pixels as one that ran straight through; checkpoints are resumable while the render
+// runs; a mismatched scene or setting, or a file that cannot be resumed, exits 2.
+#include <gtest/gtest.h>
+
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfIntAttribute.h>
+#include <OpenEXR/ImfStringAttribute.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include "tests/test_support.h"
+
+namespace tessera {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string quote(const std::string& s) { return "'" + s + "'"; }
+
+const std::string kSettings = " --width 40 --spp 40 --max-bounces 4 --seed 7 -q";
+
+test::CommandResult render(const std::string& scene, const std::string& args) {
+  return test::run_command("timeout 300 " + quote(test::tessera_exe()) + " render " + quote(scene) + " " + args);
+}
+
+std::string cornell() { return test::scene_path("cornell-box/cornell-box.gltf"); }
+
+std::vector<float> rgb_of(const std::string& path) {
+  Imf::InputFile file(path.c_str());
+  const Imath::Box2i dw = file.header().dataWindow();
+  const int w = dw.max.x + 1, h = dw.max.y + 1;
+  std::vector<float> px(static_cast<std::size_t>(3) * w * h);
+  Imf::FrameBuffer fb;
+  for (int c = 0; c < 3; ++c)
+    fb.insert(std::string(1, "RGB"[c]), Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(px.data() + c),
+                                                   3 * sizeof(float), 3 * sizeof(float) * w));
+  file.setFrameBuffer(fb);
+  file.readPixels(0, h - 1);
+  return px;
+}
+
+int int_attribute(const std::string& path, const char* name) {
+  Imf::InputFile file(path.c_str());
+  return file.header().typedAttribute<Imf::IntAttribute>(name).value();
+}
+
+bool has_resume_data(const std::string& path) {
+  Imf::InputFile file(path.c_str());
+  return file.header().findTypedAttribute<Imf::StringAttribute>("tesseraResume") &&
+         file.header().channels().findChannel("tessera.samples");
+}
+
+TEST(ResumeCli, TimeLimitedThenResumedIsTheSameBitForBit) {
+  const std::string dir = test::make_temp_dir("resume-cli");
+  auto r = render(cornell(), "-o " + quote(dir + "/whole.exr") + kSettings);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_FALSE(has_resume_data(dir + "/whole.exr"));  // a finished frame is a plain frame
+
+  // The first wave always finishes; a limit of a millisecond stops right after it.
+  r = render(cornell(), "-o " + quote(dir + "/part.exr") + kSettings + " --time-limit 0.001");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(int_attribute(dir + "/part.exr", "partial"), 1);
+  EXPECT_EQ(int_attribute(dir + "/part.exr", "targetSamplesPerPixel"), 40);
+  EXPECT_LT(int_attribute(dir + "/part.exr", "samplesPerPixel"), 40);
+  EXPECT_TRUE(has_resume_data(dir + "/part.exr"));
+
+  r = render(cornell(), "--resume " + quote(dir + "/part.exr") + " -o " + quote(dir + "/resumed.exr") + kSettings +
+                            " --threads 1 --tile-size 13");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(int_attribute(dir + "/resumed.exr", "partial"), 0);
+  EXPECT_EQ(int_attribute(dir + "/resumed.exr", "samplesPerPixel"), 40);
+  const std::vector<float> whole = rgb_of(dir + "/whole.exr"), resumed = rgb_of(dir + "/resumed.exr");
+  ASSERT_EQ(whole.size(), resumed.size());
+  EXPECT_EQ(std::memcmp(whole.data(), resumed.data(), whole.size() * sizeof(float)), 0);
+}
+
+TEST(ResumeCli, ResumeRewritesTheFileItContinuesByDefault) {
+  const std::string dir = test::make_temp_dir("resume-cli-default");
+  const std::string part = dir + "/frame.exr";
+  ASSERT_EQ(render(cornell(), "-o " + quote(part) + kSettings + " --time-limit 0.001").exit_code, 0);
+  const auto r = test::run_command("cd " + quote(dir) + " && " + quote(test::tessera_exe()) + " render " +
+                                   quote(cornell()) + " --resume frame.exr" + kSettings);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(int_attribute(part, "partial"), 0);
+  EXPECT_EQ(int_attribute(part, "samplesPerPixel"), 40);
+}
+
+class ResumeMismatch : public testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = test::make_temp_dir("resume-mismatch");
+    part_ = dir_ + "/part.exr";
+    const auto r = render(cornell(), "-o " + quote(part_) + kSettings + " --time-limit 0.001");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  test::CommandResult resume(const std::string& scene, const std::string& args) {
+    return render(scene, "--resume " + quote(part_) + " -o " + quote(dir_ + "/out.exr") + " " + args);
+  }
+  std::string dir_, part_;
+};
+
+TEST_F(ResumeMismatch, AnotherSppIsRefused) {
+  const auto r = resume(cornell(), "--width 40 --spp 41 --max-bounces 4 --seed 7 -q");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, "tessera: error: --resume " + part_ +
+                       ": spp differs: the file has 40, this render 41; resume with the options it was started with\n");
+  EXPECT_FALSE(fs::exists(dir_ + "/out.exr"));
+}
+
+TEST_F(ResumeMismatch, AnotherSeedSizeOrCameraIsRefused) {
+  for (const std::string args : {"--width 40 --spp 40 --max-bounces 4 --seed 8 -q", "--width 41 --spp 40 --max-bounces 4 --seed 7 -q",
+                                 "--width 40 --spp 40 --max-bounces 4 --seed 7 -q --fov 30",
+                                 "--width 40 --spp 40 --max-bounces 4 --seed 7 -q --background 1"}) {
+    const auto r = resume(cornell(), args);
+    EXPECT_EQ(r.exit_code, 2) << args;
+    EXPECT_NE(r.err.find("differs: the file has"), std::string::npos) << args << ": " << r.err;
+  }
+}
+
+TEST_F(ResumeMismatch, AnotherSceneFileIsRefused) {
+  // The same scene with one more byte: another file, however alike.
+  fs::copy_file(test::scene_path("cornell-box/cornell-box.bin"), dir_ + "/cornell-box.bin");
+  fs::copy_file(cornell(), dir_ + "/cornell-box.gltf");
+  std::ofstream(dir_ + "/cornell-box.gltf", std::ios::app) << "\n";
+  const auto r = resume(dir_ + "/cornell-box.gltf", kSettings);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("tessera: error: --resume " + part_ + ": was rendered from another scene file"),
+            std::string::npos) << r.err;
+}
+
+TEST_F(ResumeMismatch, OtherThreadsTilesAndExposureAreAllowed) {
+  const auto r = resume(cornell(), kSettings + " --threads 1 --tile-size 64 --scheduler chunks --half --exposure 1");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+}
+
+TEST(ResumeCli, AFinishedFrameIsRefused) {
+  const std::string dir = test::make_temp_dir("resume-finished");
+  ASSERT_EQ(render(cornell(), "-o " + quote(dir + "/done.exr") + kSettings).exit_code, 0);
+  const auto r = render(cornell(), "--resume " + quote(dir + "/done.exr") + kSettings);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, "tessera: error: " + dir + "/done.exr: is a finished render: nothing to resume\n");
+}
+
+TEST(ResumeCli, AFileThatIsNotAnExrIsRefusedBeforeLoading) {
+  const std::string dir = test::make_temp_dir("resume-not-exr");
+  std::ofstream(dir + "/frame.exr") << "not an image";
+  const auto r = render("/no/such/scene.gltf", "--resume " + quote(dir + "/frame.exr"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err.rfind("tessera: error: " + dir + "/frame.exr: cannot be read for resuming: ", 0), 0u) << r.err;
+}
+
+// A render killed outright (SIGKILL: no chance to write) still leaves its last checkpoint,
+// which resumes.
+TEST(ResumeCli, ACheckpointSurvivesAKillAndResumes) {
+  const std::string dir = test::make_temp_dir("checkpoint-kill");
+  const std::string out = dir + "/frame.exr";
+  const std::string long_render = " --width 32 --spp 1000000 --seed 3 -q";
+  const auto r = test::run_command(quote(test::tessera_exe()) + " render " + quote(cornell()) + " -o " + quote(out) +
+                                   long_render + " --checkpoint 0.2 & pid=$!; for i in $(seq 600); do [ -f " +
+                                   quote(out) + " ] && break; sleep 0.1; done; sleep 0.5; kill -KILL $pid; wait $pid");
+  EXPECT_EQ(r.exit_code, 137) << r.err;
+  ASSERT_TRUE(fs::exists(out)) << r.err;
+  EXPECT_EQ(int_attribute(out, "partial"), 1);
+  EXPECT_TRUE(has_resume_data(out));
+  const int spp = int_attribute(out, "samplesPerPixel");
+  const auto resumed = render(cornell(), "--resume " + quote(out) + long_render + " --time-limit 0.5");
+  EXPECT_EQ(resumed.exit_code, 0) << resumed.err;
+  EXPECT_GT(int_attribute(out, "samplesPerPixel"), spp);
+}
+
+}  // namespace
+}  // namespace tessera
