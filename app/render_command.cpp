@@ -260,9 +260,15 @@ int run_render(const RenderOptions& o) {
   }
   if (o.checkpoint > 0.0) {
     settings.checkpoint_interval = o.checkpoint;
+    // A checkpoint that cannot be written (disk full) does not stop the render: the frame
+    // is still in memory, and the final write reports the error if it persists.
     settings.on_checkpoint = [&](const Film& film, const RenderStats& stats) {
-      write_outputs(output, o.preview, film.resolve(), write_params(o, settings, rc, camera, stats, true),
-                    film.state(), resume_text);
+      try {
+        write_outputs(output, o.preview, film.resolve(), write_params(o, settings, rc, camera, stats, true),
+                      film.state(), resume_text);
+      } catch (const OutputError& e) {
+        fmt::print(stderr, "tessera: warning: checkpoint not written: {}\n", e.what());
+      }
     };
   }
 

@@ -1,12 +1,12 @@
 #include "renderer/file_output.h"
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 
 #include "renderer/image_output.h"
 
@@ -21,13 +21,48 @@ fs::path temporary_sibling(const fs::path& target) {
          (".tessera-tmp-" + std::to_string(::getpid()) + "-" + target.filename().string());
 }
 
+std::string errno_text() { return std::strerror(errno); }
+
+// Flushes the file to the disk: a delayed write error (a full disk on some file systems)
+// shows here, and a crash after the rename cannot leave an empty file.
+void sync_file(const fs::path& file) {
+  const int fd = ::open(file.c_str(), O_RDONLY);
+  if (fd < 0) throw OutputError("cannot reopen " + file.string() + ": " + errno_text());
+  const int rc = ::fsync(fd);
+  const std::string reason = errno_text();
+  ::close(fd);
+  if (rc != 0) throw OutputError("cannot be written to disk: " + reason);
+}
+
 }  // namespace
+
+void write_bytes_file(const std::string& path, const void* data, std::size_t size) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  if (fd < 0) throw OutputError(path + ": cannot be created: " + errno_text());
+  const char* p = static_cast<const char*>(data);
+  while (size > 0) {
+    const ssize_t n = ::write(fd, p, size);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const std::string reason = n < 0 ? errno_text() : "nothing written";
+      ::close(fd);
+      throw OutputError(path + ": " + reason);
+    }
+    p += n;
+    size -= static_cast<std::size_t>(n);
+  }
+  if (::close(fd) != 0) throw OutputError(path + ": " + errno_text());
+}
 
 void check_writable_path(const std::string& path) {
   if (path.empty()) throw OutputPathError("output path is empty");
   const fs::path p(path);
   std::error_code ec;
-  if (fs::is_directory(p, ec)) throw OutputPathError(path + ": is a directory");
+  const fs::file_status status = fs::status(p, ec);
+  if (fs::is_directory(status)) throw OutputPathError(path + ": is a directory");
+  if (fs::exists(status) && !fs::is_regular_file(status))
+    throw OutputPathError(path + ": is not a regular file (a device, pipe or socket): tessera writes a temporary "
+                          "file beside the output and renames it into place");
   const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
   if (!fs::is_directory(dir, ec)) throw OutputPathError(path + ": directory " + dir.string() + " does not exist");
   if (::access(dir.c_str(), W_OK) != 0) throw OutputPathError(path + ": directory " + dir.string() + " is not writable");
@@ -39,6 +74,7 @@ void write_file_atomically(const std::string& path, const std::function<void(con
   const fs::path tmp = temporary_sibling(target);
   try {
     write(tmp.string());
+    sync_file(tmp);
   } catch (const std::exception& e) {
     std::error_code ec;
     fs::remove(tmp, ec);
@@ -54,12 +90,7 @@ void write_file_atomically(const std::string& path, const std::function<void(con
 }
 
 void write_text_file(const std::string& path, const std::string& text) {
-  write_file_atomically(path, [&](const std::string& tmp) {
-    std::ofstream out(tmp, std::ios::binary);
-    out << text;
-    out.close();
-    if (!out) throw OutputError(std::string("cannot write: ") + std::strerror(errno));
-  });
+  write_file_atomically(path, [&](const std::string& tmp) { write_bytes_file(tmp, text.data(), text.size()); });
 }
 
 }  // namespace tessera

@@ -4,18 +4,24 @@
 // replaces an existing file.
 #pragma once
 
+#include <cstddef>
 #include <functional>
 #include <string>
 
 namespace tessera {
 
 // Throws OutputPathError (bad usage) when the directory of `path` is missing or not writable, or `path`
-// is a directory. Call it before the work that produces the file.
+// exists and is not a regular file (a directory; a device such as /dev/full, a pipe or a socket, which
+// renaming would replace). Call it before the work that produces the file.
 void check_writable_path(const std::string& path);
 
 // Calls write(temporary path), then renames the temporary file to `path`. Any exception
 // from `write` removes the temporary file and is rethrown as OutputError naming `path`.
 void write_file_atomically(const std::string& path, const std::function<void(const std::string&)>& write);
+
+// Writes `size` bytes to `path` (a temporary file, usually) with every write checked and an
+// fsync, so a full disk or an I/O error is an OutputError, never a short file.
+void write_bytes_file(const std::string& path, const void* data, std::size_t size);
 
 // A text file (JSON, CSV, Markdown, SVG), written atomically.
 void write_text_file(const std::string& path, const std::string& text);

@@ -16,6 +16,7 @@
 #include <OpenEXR/ImfMatrixAttribute.h>
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfStringAttribute.h>
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include "renderer/file_output.h"
@@ -123,13 +124,30 @@ void write_exr(const std::string& path, const FrameImage& img, const ImageWriteP
   file.writePixels(img.height);
 }
 
+// Some of OpenImageIO's writers do not report a failed write (PNG leaves a truncated file
+// and says nothing; JPEG's library exits the process on a full disk), so the image is encoded
+// into memory and written by write_bytes_file, which checks every write and the fsync.
+// A writer that went straight to the file: read it back, so a truncated file is an error.
+void verify_readable(const std::string& path) {
+  auto in = OIIO::ImageInput::open(path);
+  std::vector<float> pixels;
+  if (in) pixels.resize(static_cast<std::size_t>(in->spec().image_pixels()) * in->spec().nchannels);
+  if (!in || !in->read_image(0, 0, 0, -1, OIIO::TypeDesc::FLOAT, pixels.data()))
+    throw OutputError(path + ": the written file does not read back (is the disk full?)");
+}
+
 void write_oiio_pixels(const std::string& path, int width, int height, OIIO::TypeDesc type, const void* pixels) {
   auto out = OIIO::ImageOutput::create(path);
   if (!out) throw OutputError(path + ": no image writer for this format (" + OIIO::geterror() + ")");
   OIIO::ImageSpec spec(width, height, 3, type);
   spec.attribute("Software", "tessera " + tessera_version());
+  std::vector<unsigned char> encoded;
+  OIIO::Filesystem::IOVecOutput memory(encoded);
+  const bool in_memory = out->supports("ioproxy") && out->set_ioproxy(&memory);
   if (!out->open(path, spec)) throw OutputError(path + ": " + out->geterror());
   if (!out->write_image(type, pixels) || !out->close()) throw OutputError(path + ": " + out->geterror());
+  if (in_memory) write_bytes_file(path, encoded.data(), encoded.size());
+  else verify_readable(path);
 }
 
 void write_oiio(const std::string& path, const FrameImage& img, const ImageWriteParams& params) {
@@ -158,13 +176,12 @@ std::vector<std::uint8_t> to_display_rgb8(const FrameImage& image, float exposur
 }
 
 void check_output_path(const std::string& path) {
-  if (path.empty()) throw OutputPathError("output path is empty");
+  check_writable_path(path);  // first: "-o /dev/full" is a device, whatever its extension
   const std::string ext = lower_extension(path);
   if (ext != ".exr") {
     auto writer = OIIO::ImageOutput::create(path);
     if (!writer) throw OutputPathError(path + ": unknown image format '" + ext + "' (use .exr, .png, .jpg, .ppm, .hdr, .tif, ...)");
   }
-  check_writable_path(path);
 }
 
 void write_image(const std::string& path, const FrameImage& image, const ImageWriteParams& params) {
