@@ -32,6 +32,8 @@ struct RenderOptions {
   double time_limit = 0.0;  // seconds of sampling, 0: none
   double checkpoint = 0.0;  // seconds between checkpoints, 0: none
   std::string resume;  // a partial EXR to continue
+  std::string light_sampling = "mis";
+  float clamp = 0.0f;
 };
 
 struct InfoOptions {

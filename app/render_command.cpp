@@ -95,6 +95,16 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
                   "Continue a partial or checkpointed EXR written by tessera (same scene file and same options "
                   "affecting pixels, else refused); the result is the same bit for bit as an uninterrupted render "
                   "[-o default: this file]");
+  cmd->add_option("--light-sampling", o.light_sampling,
+                  "How emitters and the environment are found: mis (BSDF and light sampling combined), "
+                  "bsdf or lights (one strategy alone: noisier, same mean; for verification)")
+      ->check(CLI::IsMember({"mis", "bsdf", "lights"}))
+      ->capture_default_str();
+  cmd->add_option("--clamp", o.clamp,
+                  "Clamp each sample's luminance to this value to tame fireflies (biased: darkens highlights; "
+                  "0 = off)")
+      ->check(CLI::Range(0.0f, 1e30f))
+      ->capture_default_str();
 }
 
 namespace {
@@ -220,6 +230,10 @@ int run_render(const RenderOptions& o) {
   settings.max_bounces = o.max_bounces;
   settings.threads = o.threads;
   settings.tile_size = o.tile_size;
+  settings.light_sampling = o.light_sampling == "bsdf"     ? LightSampling::BsdfOnly
+                            : o.light_sampling == "lights" ? LightSampling::LightsOnly
+                                                           : LightSampling::Mis;
+  settings.clamp = o.clamp;
   settings.seed = static_cast<std::uint32_t>(o.seed);
   for (const std::string& a : o.aovs) {
     settings.aovs.albedo |= a == "albedo";

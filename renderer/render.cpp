@@ -23,7 +23,10 @@ struct TileCounters {
 // wave.begin samples: a resumed film's pixels that are ahead skip the wave.
 void render_tile(const RenderScene& scene, const RenderCamera& camera, const RenderSettings& settings,
                  const Tile& tile, SampleWave wave, Film& film, TileCounters& counters) {
-  const PathTracerParams params{settings.max_bounces};
+  PathTracerParams params;
+  params.max_bounces = settings.max_bounces;
+  params.light_sampling = settings.light_sampling;
+  params.clamp = settings.clamp;
   const vec3 forward = camera.forward();
   const float inv_w = 1.0f / settings.width, inv_h = 1.0f / settings.height;
   for (int y = tile.y0; y < tile.y1; ++y) {

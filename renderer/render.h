@@ -9,6 +9,7 @@
 
 #include "renderer/camera.h"
 #include "renderer/film.h"
+#include "renderer/integrator/path_tracer.h"
 #include "renderer/render_scene.h"
 #include "renderer/render_stats.h"
 
@@ -34,6 +35,8 @@ struct RenderSettings {
   // (the last wave excepted: the finished frame follows at once).
   double checkpoint_interval = 0.0;
   std::function<void(const Film&, const RenderStats&)> on_checkpoint;
+  LightSampling light_sampling = LightSampling::Mis;
+  float clamp = 0.0f;  // > 0: clamp each sample's luminance (biased, off by default)
 };
 
 // Live counters a progress display may poll while rendering, and a way to stop early

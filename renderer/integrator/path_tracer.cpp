@@ -12,6 +12,15 @@ inline float power_heuristic(float pdf_a, float pdf_b) {
   return a + b > 0.0f ? a / (a + b) : 0.0f;
 }
 
+// The weight of an estimate made with `pdf` when the other strategy has `other_pdf`.
+float strategy_weight(LightSampling mode, bool is_light_sample, float pdf, float other_pdf) {
+  switch (mode) {
+    case LightSampling::BsdfOnly: return is_light_sample ? 0.0f : 1.0f;
+    case LightSampling::LightsOnly: return is_light_sample ? 1.0f : 0.0f;
+    default: return power_heuristic(pdf, other_pdf);
+  }
+}
+
 struct ShadingContext {
   const SurfaceHit& s;
   const Frame& frame;
@@ -47,7 +56,7 @@ vec3 punctual_light_contribution(const RenderScene& scene, const ShadingContext&
 
 // One light sample on the emissive triangles, weighted against BSDF sampling (MIS).
 vec3 area_light_contribution(const RenderScene& scene, const ShadingContext& c, SampleStream& rng,
-                             PathCounters& counters) {
+                             LightSampling mode, PathCounters& counters) {
   const float u_select = rng.next();
   const vec2 u_point = rng.next2();
   AreaLightSample ls;
@@ -57,13 +66,13 @@ vec3 area_light_contribution(const RenderScene& scene, const ShadingContext& c, 
   if (f == vec3(0.0f) || ls.radiance == vec3(0.0f)) return vec3(0.0f);
   ++counters.rays;
   if (scene.geometry->occluded(c.origin_towards(ls.wi), ls.wi, ls.distance * (1.0f - 1e-4f))) return vec3(0.0f);
-  const float weight = power_heuristic(ls.pdf, c.bsdf.pdf(c.wo_local, wi_local));
+  const float weight = strategy_weight(mode, true, ls.pdf, c.bsdf.pdf(c.wo_local, wi_local));
   return f * ls.radiance * (std::fabs(wi_local.z) * weight / ls.pdf);
 }
 
 // One direction towards the environment image, weighted against BSDF sampling (MIS).
 vec3 environment_contribution(const RenderScene& scene, const ShadingContext& c, SampleStream& rng,
-                              PathCounters& counters) {
+                              LightSampling mode, PathCounters& counters) {
   const vec2 u = rng.next2();
   float pdf;
   const vec3 wi = scene.environment.sample(u, pdf);
@@ -73,7 +82,7 @@ vec3 environment_contribution(const RenderScene& scene, const ShadingContext& c,
   if (f == vec3(0.0f)) return vec3(0.0f);
   ++counters.rays;
   if (scene.geometry->occluded(c.origin_towards(wi), wi, std::numeric_limits<float>::infinity())) return vec3(0.0f);
-  const float weight = power_heuristic(pdf, c.bsdf.pdf(c.wo_local, wi_local));
+  const float weight = strategy_weight(mode, true, pdf, c.bsdf.pdf(c.wo_local, wi_local));
   return f * scene.environment.radiance(wi) * (std::fabs(wi_local.z) * weight / pdf);
 }
 
@@ -84,8 +93,9 @@ vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ra
   vec3 radiance(0.0f), throughput(1.0f);
   vec3 absorption(0.0f);  // of the volume the ray travels in (Beer-Lambert); 0 = none
   float bsdf_pdf = 0.0f;  // solid-angle pdf of the direction that led here; 0 = camera ray
-  const bool light_sampling = !scene.area_lights->empty();
-  const bool environment_sampling = scene.environment.has_image();
+  const LightSampling mode = params.light_sampling;
+  const bool light_sampling = !scene.area_lights->empty() && mode != LightSampling::BsdfOnly;
+  const bool environment_sampling = scene.environment.has_image() && mode != LightSampling::BsdfOnly;
   for (int bounce = 0;; ++bounce) {
     HitRecord hit;
     ++counters.rays;
@@ -93,7 +103,7 @@ vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ra
     if (absorption != vec3(0.0f)) throughput *= found ? glm::exp(-absorption * hit.t) : vec3(0.0f);
     if (!found) {
       const float weight = bsdf_pdf > 0.0f && environment_sampling
-                               ? power_heuristic(bsdf_pdf, scene.environment.pdf(ray.direction))
+                               ? strategy_weight(mode, false, bsdf_pdf, scene.environment.pdf(ray.direction))
                                : 1.0f;
       radiance += throughput * scene.environment.radiance(ray.direction) * weight;
       break;
@@ -104,7 +114,7 @@ vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ra
     if ((front || sp.double_sided) && sp.emission != vec3(0.0f)) {
       // Light sampling could have found this point too: weigh the two strategies.
       const float weight = bsdf_pdf > 0.0f && light_sampling
-                               ? power_heuristic(bsdf_pdf, scene.area_lights->pdf(hit, s, ray.direction))
+                               ? strategy_weight(mode, false, bsdf_pdf, scene.area_lights->pdf(hit, s, ray.direction))
                                : 1.0f;
       radiance += throughput * sp.emission * weight;
     }
@@ -130,8 +140,8 @@ vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ra
     const GltfBsdf bsdf(sp, wo_local, front ? sp.ior : 1.0f / sp.ior);
     const ShadingContext ctx{s, frame, bsdf, wo_local};
     if (!scene.description.lights.empty()) radiance += throughput * punctual_light_contribution(scene, ctx, counters);
-    if (light_sampling) radiance += throughput * area_light_contribution(scene, ctx, rng, counters);
-    if (environment_sampling) radiance += throughput * environment_contribution(scene, ctx, rng, counters);
+    if (light_sampling) radiance += throughput * area_light_contribution(scene, ctx, rng, mode, counters);
+    if (environment_sampling) radiance += throughput * environment_contribution(scene, ctx, rng, mode, counters);
 
     BsdfSample bs;
     const float u_lobe = rng.next();
@@ -151,6 +161,10 @@ vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ra
   if (!is_finite(radiance)) {
     ++counters.dropped;
     return vec3(0.0f);
+  }
+  if (params.clamp > 0.0f) {
+    const float l = luminance(radiance);
+    if (l > params.clamp) radiance *= params.clamp / l;
   }
   return radiance;
 }

@@ -10,9 +10,15 @@
 
 namespace tessera {
 
+// How light from emitters and the environment is found. Mis is the renderer; the other two
+// are single strategies kept to show, in tests and on request, that all three agree.
+enum class LightSampling : std::uint8_t { Mis, BsdfOnly, LightsOnly };
+
 struct PathTracerParams {
   int max_bounces = 8;  // scattering events; 0 shows emitters and the environment only
   int roulette_start = 3;  // bounces before Russian roulette may end a path
+  LightSampling light_sampling = LightSampling::Mis;
+  float clamp = 0.0f;  // > 0: clamp each sample's radiance to this luminance (biased; off by default)
 };
 
 // What the camera ray saw first, for the albedo, normal and depth outputs.
