@@ -15,7 +15,7 @@ EmbreeDevice::~EmbreeDevice() { rtcReleaseDevice(device_); }
 RenderScene::RenderScene(SceneDescription scene, const EnvironmentParams& env)
     : description(std::move(scene)), environment(env), materials(description) {
   const auto start = std::chrono::steady_clock::now();
-  geometry = std::make_unique<SceneGeometry>(description, device.get());
+  geometry = std::make_unique<SceneGeometry>(description, device.get(), &materials);
   bvh_build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   area_lights = std::make_unique<AreaLights>(description, *geometry, materials);
 }

@@ -1,5 +1,7 @@
 #include "renderer/scene_geometry.h"
 
+#include "renderer/integrator/materials.h"
+
 #include <cstring>
 #include <map>
 #include <stdexcept>
@@ -20,6 +22,19 @@ TriangleMesh to_world_space(const TriangleMesh& src, const glm::mat4& m) {
   return out;
 }
 
+// A random number in [0,1) for stochastic (BLEND) opacity that depends only on the ray and
+// the triangle, so a render stays the same for any thread count or tile order.
+float ray_hash(const float* values, int count, std::uint32_t prim) {
+  std::uint64_t h = 0x9e3779b97f4a7c15ULL ^ prim;
+  for (int i = 0; i < count; ++i) {
+    std::uint32_t bits;
+    std::memcpy(&bits, &values[i], sizeof bits);
+    h = (h ^ bits) * 0xbf58476d1ce4e5b9ULL;
+    h ^= h >> 31;
+  }
+  return static_cast<float>(h >> 40) * 0x1.0p-24f;
+}
+
 template <typename T>
 T interpolate(const std::vector<T>& values, const std::uint32_t* idx, float u, float v) {
   return (1.0f - u - v) * values[idx[0]] + u * values[idx[1]] + v * values[idx[2]];
@@ -27,8 +42,8 @@ T interpolate(const std::vector<T>& values, const std::uint32_t* idx, float u, f
 
 }  // namespace
 
-SceneGeometry::SceneGeometry(const SceneDescription& scene, RTCDevice device)
-    : scene_(scene), device_(device) {
+SceneGeometry::SceneGeometry(const SceneDescription& scene, RTCDevice device, const MaterialTable* materials)
+    : scene_(scene), device_(device), materials_(materials) {
   top_ = rtcNewScene(device_);
   rtcSetSceneFlags(top_, RTC_SCENE_FLAG_ROBUST);
   rtcSetSceneBuildQuality(top_, RTC_BUILD_QUALITY_HIGH);
@@ -70,10 +85,51 @@ unsigned SceneGeometry::attach_triangles(RTCScene target, const TriangleMesh& me
   }
   std::memcpy(vertices, mesh.positions.data(), mesh.positions.size() * sizeof(vec3));
   std::memcpy(indices, mesh.indices.data(), mesh.triangle_count() * 3 * sizeof(std::uint32_t));
+  install_alpha_test(geom, mesh);
   rtcCommitGeometry(geom);
   const unsigned id = rtcAttachGeometry(target, geom);
   rtcReleaseGeometry(geom);
   return id;
+}
+
+namespace {
+
+// Embree filter: rejects a hit where the surface is transparent (MASK below the cutoff, or
+// BLEND with probability 1 - alpha). Runs for intersection and occlusion rays alike.
+void alpha_filter(const RTCFilterFunctionNArguments* args) {
+  const auto* test = static_cast<const SceneGeometry::AlphaTestView*>(args->geometryUserPtr);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] == 0) continue;
+    const std::uint32_t prim = RTCHitN_primID(args->hit, args->N, i);
+    const float u = RTCHitN_u(args->hit, args->N, i), v = RTCHitN_v(args->hit, args->N, i);
+    if (!test->opaque_at(prim, u, v, args->ray, args->N, i)) args->valid[i] = 0;
+  }
+}
+
+}  // namespace
+
+bool SceneGeometry::AlphaTestView::opaque_at(std::uint32_t prim, float u, float v, RTCRayN* ray, unsigned n,
+                                             unsigned i) const {
+  const std::uint32_t* idx = &mesh->indices[3 * prim];
+  vec2 uv[2] = {vec2(0.0f), vec2(0.0f)};
+  if (!mesh->texcoords0.empty()) uv[0] = interpolate(mesh->texcoords0, idx, u, v);
+  if (!mesh->texcoords1.empty()) uv[1] = interpolate(mesh->texcoords1, idx, u, v);
+  const vec4 color = mesh->colors.empty() ? vec4(1.0f) : interpolate(mesh->colors, idx, u, v);
+  const float alpha = materials->opacity(mesh->material, uv, color);
+  if (alpha >= 1.0f) return true;
+  if (alpha <= 0.0f) return false;
+  const float key[6] = {RTCRayN_org_x(ray, n, i), RTCRayN_org_y(ray, n, i), RTCRayN_org_z(ray, n, i),
+                        RTCRayN_dir_x(ray, n, i), RTCRayN_dir_y(ray, n, i), RTCRayN_dir_z(ray, n, i)};
+  return ray_hash(key, 6, prim) < alpha;
+}
+
+void SceneGeometry::install_alpha_test(RTCGeometry geom, const TriangleMesh& mesh) {
+  if (!materials_ || mesh.material < 0) return;
+  if (scene_.materials[mesh.material].alpha_mode == AlphaMode::Opaque) return;
+  alpha_tests_.push_back(std::make_unique<AlphaTestView>(AlphaTestView{&mesh, materials_}));
+  rtcSetGeometryUserData(geom, alpha_tests_.back().get());
+  rtcSetGeometryIntersectFilterFunction(geom, alpha_filter);
+  rtcSetGeometryOccludedFilterFunction(geom, alpha_filter);
 }
 
 void SceneGeometry::add_baked(const Mesh& mesh, const glm::mat4& to_world) {

@@ -6,6 +6,7 @@
 #include <embree3/rtcore.h>
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "renderer/ray.h"
@@ -31,9 +32,20 @@ struct SurfaceHit {
   float t = 0.0f;
 };
 
+class MaterialTable;
+
 class SceneGeometry {
  public:
-  SceneGeometry(const SceneDescription& scene, RTCDevice device);
+  // What an alpha-test filter needs about its triangles (Embree geometry user data).
+  struct AlphaTestView {
+    const TriangleMesh* mesh;
+    const MaterialTable* materials;
+    bool opaque_at(std::uint32_t prim, float u, float v, RTCRayN* ray, unsigned n, unsigned i) const;
+  };
+
+  // With `materials`, triangles whose material is alpha MASK or BLEND get Embree filter
+  // functions, so every ray (camera, bounce, shadow) sees the cut-outs the same way.
+  SceneGeometry(const SceneDescription& scene, RTCDevice device, const MaterialTable* materials = nullptr);
   ~SceneGeometry();
   SceneGeometry(const SceneGeometry&) = delete;
   SceneGeometry& operator=(const SceneGeometry&) = delete;
@@ -70,10 +82,14 @@ class SceneGeometry {
   void add_baked(const Mesh& mesh, const glm::mat4& to_world);
   void add_instanced(int mesh_index, const std::vector<const Instance*>& placements);
   unsigned attach_triangles(RTCScene target, const TriangleMesh& mesh);
+  void install_alpha_test(RTCGeometry geom, const TriangleMesh& mesh);
   const Placement& placement(const HitRecord& hit, Placement& scratch) const;
+
 
   const SceneDescription& scene_;
   RTCDevice device_;
+  const MaterialTable* materials_;
+  std::vector<std::unique_ptr<AlphaTestView>> alpha_tests_;
   RTCScene top_ = nullptr;
   std::vector<RTCScene> prototypes_;  // one per instanced mesh, indexed like scene_.meshes
   std::vector<TriangleMesh> baked_;  // world-space copies of meshes placed once

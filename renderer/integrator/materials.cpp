@@ -24,6 +24,16 @@ const Material& MaterialTable::material(int index) const {
   return index >= 0 ? materials_[index] : default_material_;
 }
 
+float MaterialTable::opacity(int index, const vec2 uv[2], const vec4& color) const {
+  const Material& m = material(index);
+  if (m.alpha_mode == AlphaMode::Opaque) return 1.0f;
+  float alpha = m.base_color_factor.a * color.a;
+  if (m.base_color_texture.present())
+    alpha *= sample_texture(srgb_[m.base_color_texture.image], m.base_color_texture, uv[m.base_color_texture.texcoord]).a;
+  if (m.alpha_mode == AlphaMode::Mask) return alpha >= m.alpha_cutoff ? 1.0f : 0.0f;
+  return glm::clamp(alpha, 0.0f, 1.0f);
+}
+
 vec4 MaterialTable::lookup(const TextureRef& ref, const std::vector<TextureImage>& images,
                            const SurfaceHit& hit) const {
   if (!ref.present()) return vec4(1.0f);

@@ -36,6 +36,10 @@ class MaterialTable {
   ShadingPoint evaluate(const SurfaceHit& hit) const;
   const Material& material(int index) const;
 
+  // Opacity for the alpha test: 0 or 1 for MASK (alphaCutoff), the alpha itself for BLEND,
+  // 1 for OPAQUE. uv holds TEXCOORD_0 and _1, color COLOR_0 (white when absent).
+  float opacity(int material, const vec2 uv[2], const vec4& color) const;
+
  private:
   vec4 lookup(const TextureRef& ref, const std::vector<TextureImage>& images, const SurfaceHit& hit) const;
   vec3 perturbed_normal(const Material& m, const SurfaceHit& hit) const;
