@@ -22,6 +22,19 @@ TriangleMesh to_world_space(const TriangleMesh& src, const glm::mat4& m) {
   return out;
 }
 
+// A tangent frame from the triangle's UV parameterisation, for normal maps on meshes without
+// TANGENT. v is flipped: glTF's texture origin is the top-left, while tangent space (as
+// MikkTSpace builds it for glTF) has the bitangent pointing up the image.
+vec4 face_tangent(const vec3& p0, const vec3& p1, const vec3& p2, vec2 t0, vec2 t1, vec2 t2, const vec3& n) {
+  const vec3 e1 = p1 - p0, e2 = p2 - p0;
+  const vec2 d1(t1.x - t0.x, t0.y - t1.y), d2(t2.x - t0.x, t0.y - t2.y);
+  const float det = d1.x * d2.y - d1.y * d2.x;
+  if (!(std::fabs(det) > 1e-20f)) return vec4(0.0f);
+  const vec3 t = (e1 * d2.y - e2 * d1.y) / det, b = (e2 * d1.x - e1 * d2.x) / det;
+  if (!all_finite(t) || glm::dot(t, t) == 0.0f) return vec4(0.0f);
+  return vec4(glm::normalize(t), glm::dot(glm::cross(n, t), b) < 0.0f ? -1.0f : 1.0f);
+}
+
 // A random number in [0,1) for stochastic (BLEND) opacity that depends only on the ray and
 // the triangle, so a render stays the same for any thread count or tile order.
 float ray_hash(const float* values, int count, std::uint32_t prim) {
@@ -263,6 +276,8 @@ SurfaceHit SceneGeometry::surface(const Ray& ray, const HitRecord& hit) const {
     s.tangent = vec4(tw, t.w < 0.0f ? -1.0f : 1.0f);
   }
   if (!m.texcoords0.empty()) s.uv[0] = interpolate(m.texcoords0, idx, hit.u, hit.v);
+  if (m.tangents.empty() && !m.texcoords0.empty())
+    s.tangent = face_tangent(p0, p1, p2, m.texcoords0[idx[0]], m.texcoords0[idx[1]], m.texcoords0[idx[2]], s.ns);
   if (!m.texcoords1.empty()) s.uv[1] = interpolate(m.texcoords1, idx, hit.u, hit.v);
   if (!m.colors.empty()) s.color = interpolate(m.colors, idx, hit.u, hit.v);
   s.material = m.material;
