@@ -41,6 +41,10 @@ void render_tile(const RenderScene& scene, const RenderCamera& camera, const Ren
         const vec2 jitter = rng.next2();
         const vec2 lens = rng.next2();
         const Ray ray = camera.generate_ray({(x + jitter.x) * inv_w, (y + jitter.y) * inv_h}, lens);
+        if (!is_finite(ray.origin) || !is_finite(ray.direction)) {  // a degenerate camera: Embree
+          ++counters.path.dropped;                                 // would abort on such a ray
+          continue;
+        }
         FirstHit first;
         sum += glm::dvec3(trace_path(scene, params, ray, rng, first, counters.path));
         if (first.hit) {

@@ -278,7 +278,10 @@ std::string resolve_gltf_uri(const std::string& base_dir, const std::string& uri
 
 std::string unreadable_reason(const std::string& path) {
   std::error_code ec;
-  if (fs::is_directory(path, ec)) return "it is a directory";
+  const fs::file_status status = fs::status(path, ec);
+  if (fs::is_directory(status)) return "it is a directory";
+  // A device or pipe (a URI that climbs to /dev/zero or names a FIFO) would never end.
+  if (fs::exists(status) && !fs::is_regular_file(status)) return "it is not a regular file (a device or pipe)";
   const int fd = ::open(path.c_str(), O_RDONLY);
   if (fd < 0) return std::strerror(errno);
   ::close(fd);

@@ -23,6 +23,10 @@ bool file_exists(const std::string& path, void*) { return unreadable_reason(path
 std::string expand_file_path(const std::string& path, void*) { return path; }  // no ~ or $VAR
 
 bool read_whole_file(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*) {
+  if (!unreadable_reason(path).empty()) {  // a directory, a device, a pipe: never read
+    if (err) *err += path + ": cannot be read\n";
+    return false;
+  }
   std::ifstream in(path, std::ios::binary);
   if (in) out->assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   if (in && !in.bad()) return true;
