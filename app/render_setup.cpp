@@ -30,19 +30,22 @@ void resolve_resolution(const Camera* camera, int& width, int& height) {
   if (height <= 0) height = std::max(1, static_cast<int>(std::lround(width / aspect)));
 }
 
-std::uint64_t emissive_triangle_count(const SceneDescription& scene) {
+std::uint64_t emissive_triangle_count(const SceneDescription& scene, bool untextured_only) {
   std::uint64_t count = 0;
   for (const Instance& inst : scene.instances)
     for (const TriangleMesh& prim : scene.meshes[inst.mesh].primitives) {
       if (prim.material < 0) continue;
       const Material& m = scene.materials[prim.material];
+      if (untextured_only && m.emissive_texture.present()) continue;
       if (m.emissive_strength > 0.0f && max_component(m.emissive_factor) > 0.0f) count += prim.triangle_count();
     }
   return count;
 }
 
 bool scene_has_lights(const SceneDescription& scene) {
-  return !scene.lights.empty() || emissive_triangle_count(scene) > 0;
+  // Emission through a texture is mostly decoration (screens, glowing details), not what
+  // lights a scene: it does not make the automatic background black.
+  return !scene.lights.empty() || emissive_triangle_count(scene, /*untextured_only=*/true) > 0;
 }
 
 float autofocus_distance(const RenderScene& scene, const RenderCamera& camera) {

@@ -19,10 +19,12 @@ Camera choose_camera(const SceneDescription& scene, const std::string& choice, i
 // ratio; 960 pixels wide when neither is given.
 void resolve_resolution(const Camera* camera, int& width, int& height);
 
-// Triangles placed in the scene whose material emits light (counted per placement).
-std::uint64_t emissive_triangle_count(const SceneDescription& scene);
+// Triangles placed in the scene whose material emits light (counted per placement);
+// `untextured_only` leaves out emission through an emissive texture.
+std::uint64_t emissive_triangle_count(const SceneDescription& scene, bool untextured_only = false);
 
-// True when the scene has its own light: a punctual light or an emissive triangle.
+// True when the scene has its own light: a punctual light or a triangle emitting without
+// an emissive texture.
 bool scene_has_lights(const SceneDescription& scene);
 
 // Distance along the view axis to what the centre of the image sees, for autofocus.
