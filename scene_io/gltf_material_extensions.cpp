@@ -67,11 +67,18 @@ void read_material_extensions(const tinygltf::Material& src, const TextureResolv
     mat.clearcoat_roughness_factor = number(*e, "clearcoatRoughnessFactor", 0.0f);
     mat.clearcoat_roughness_texture = texture(*e, "clearcoatRoughnessTexture", resolve);
   }
+  if (const tinygltf::Value* e = extension(src, "KHR_materials_sheen")) {
+    mat.sheen_color_factor = color(*e, "sheenColorFactor", glm::vec3(0.0f));
+    mat.sheen_color_texture = texture(*e, "sheenColorTexture", resolve);
+    mat.sheen_roughness_factor = number(*e, "sheenRoughnessFactor", 0.0f);
+    mat.sheen_roughness_texture = texture(*e, "sheenRoughnessTexture", resolve);
+  }
   if (extension(src, "KHR_materials_unlit")) mat.unlit = true;
   const bool finite = std::isfinite(mat.transmission_factor) && std::isfinite(mat.thickness_factor) &&
                       std::isfinite(mat.specular_factor) && all_finite(mat.specular_color_factor) &&
                       all_finite(mat.attenuation_color) && std::isfinite(mat.clearcoat_factor) &&
-                      std::isfinite(mat.clearcoat_roughness_factor);
+                      std::isfinite(mat.clearcoat_roughness_factor) && all_finite(mat.sheen_color_factor) &&
+                      std::isfinite(mat.sheen_roughness_factor);
   if (!finite) fail("has a non-finite extension factor");
 }
 

@@ -1,5 +1,5 @@
 // The KHR_materials_* extensions tessera renders: transmission, ior, volume, specular,
-// clearcoat, unlit (emissive_strength is read with the core material).
+// clearcoat, sheen, unlit (emissive_strength is read with the core material).
 #pragma once
 
 #include <functional>

@@ -53,6 +53,10 @@ std::vector<Config> configs() {
     mixed.specular = 0.5f;
     mixed.specular_color = vec3(1.0f, 0.5f, 0.25f);
     out.push_back({"mixed r" + std::to_string(r), mixed});
+    ShadingPoint velvet = material(0.0f, r, vec3(0.2f, 0.1f, 0.1f));
+    velvet.sheen_color = vec3(0.9f, 0.4f, 0.6f);
+    velvet.sheen_roughness = r;
+    out.push_back({"sheen r" + std::to_string(r), velvet});
   }
   return out;
 }
@@ -191,6 +195,9 @@ TEST(GltfBsdf, WhiteFurnaceEnergyPerMaterial) {
   thin.thin_walled = true;
   ShadingPoint rough_glass = glass;
   rough_glass.roughness = 0.6f;
+  ShadingPoint sheened = lambert;
+  sheened.sheen_color = vec3(1.0f);
+  sheened.sheen_roughness = 0.5f;
   ShadingPoint coated = white(0.0f, 0.5f);
   coated.clearcoat = 1.0f;
   coated.clearcoat_roughness = 0.1f;
@@ -205,6 +212,7 @@ TEST(GltfBsdf, WhiteFurnaceEnergyPerMaterial) {
       {"thick glass rough", rough_glass, 1.5f, 0.85, 1.001},
       {"thin glass smooth", thin, 1.5f, 0.99, 1.001},
       {"clearcoat", coated, 1.5f, 0.90, 1.02},
+      {"sheen", sheened, 1.5f, 0.90, 1.001},
   };
   for (const Case& c : cases) {
     const Albedo a = albedo(c.sp, direction(45.0f), c.eta);
@@ -215,6 +223,25 @@ TEST(GltfBsdf, WhiteFurnaceEnergyPerMaterial) {
     EXPECT_GE(a.sampled, c.lo) << c.name;
     EXPECT_LE(a.sampled, c.hi) << c.name;
   }
+}
+
+// The tabulated sheen albedo against direct quadrature of the Charlie BRDF.
+TEST(Sheen, AlbedoTableMatchesQuadrature) {
+  for (float alpha : {0.1f, 0.3f, 0.8f})
+    for (float mu : {0.2f, 0.5f, 0.9f}) {
+      const CharlieSheen sheen{alpha};
+      const vec3 wo(std::sqrt(1 - mu * mu), 0.0f, mu);
+      double sum = 0.0;
+      const int n = 400;
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < 2 * n; ++j) {
+          const double z = (i + 0.5) / n, phi = (j + 0.5) / (2 * n) * 2 * M_PI, r = std::sqrt(1 - z * z);
+          sum += sheen.eval(wo, vec3(r * std::cos(phi), r * std::sin(phi), z)) * z;
+        }
+      const double e = sum * (1.0 / n) * (M_PI / n);
+      EXPECT_NEAR(sheen_albedo(mu, alpha), e, 0.01 * e + 1e-3) << "alpha " << alpha << " mu " << mu;
+      EXPECT_LE(e, 1.0);
+    }
 }
 
 // A white metal at roughness 1 (alpha 1): D = 1/pi and Lambda(w) = (1/cos - 1)/2, so the

@@ -20,7 +20,10 @@ GltfBsdf::GltfBsdf(const ShadingPoint& sp, const vec3& wo, float eta)
       specular_(sp.specular),
       clearcoat_(sp.clearcoat),
       ggx_{std::fmax(kMinAlpha, sp.roughness * sp.roughness)},
-      coat_ggx_{std::fmax(kMinAlpha, sp.clearcoat_roughness * sp.clearcoat_roughness)} {
+      coat_ggx_{std::fmax(kMinAlpha, sp.clearcoat_roughness * sp.clearcoat_roughness)},
+      sheen_color_(sp.sheen_color),
+      sheen_{std::fmax(kMinSheenAlpha, sp.sheen_roughness * sp.sheen_roughness)},
+      sheen_max_(max_component(sp.sheen_color)) {
   const float r = (sp.ior - 1.0f) / (sp.ior + 1.0f);
   f0_ = glm::min(vec3(r * r) * sp.specular_color, vec3(1.0f));
   coat_scale_ = 1.0f - clearcoat_ * coat_fresnel(wo.z);
@@ -33,11 +36,18 @@ GltfBsdf::GltfBsdf(const ShadingPoint& sp, const vec3& wo, float eta)
   w[kDiffuse] = dielectric * (1.0f - transmission_) * (1.0f - fo) * luminance(base_);
   w[kSpecular] = metallic_ * max3(fresnel_schlick(base_, vec3(1.0f), wo.z)) + dielectric * fo;
   w[kTransmission] = dielectric * transmission_ * std::fmax(1.0f - fo, 0.05f) * tint;
+  const float under_sheen = sheen_scaling(wo);
+  for (int i = 0; i < kSheen; ++i) w[i] *= under_sheen;
+  w[kSheen] = sheen_max_ > 0.0f ? sheen_max_ * sheen_albedo(wo.z, sheen_.alpha) : 0.0f;
   for (int i = 0; i < kClearcoat; ++i) w[i] *= coat_scale_;
   w[kClearcoat] = clearcoat_ * coat_fresnel(wo.z);
   float total = 0.0f;
   for (float x : w) total += x;
   for (int i = 0; i < kLobeCount; ++i) weight_[i] = total > 0.0f ? w[i] / total : 0.0f;
+}
+
+float GltfBsdf::sheen_scaling(const vec3& w) const {
+  return sheen_max_ > 0.0f ? 1.0f - sheen_max_ * sheen_albedo(std::fabs(w.z), sheen_.alpha) : 1.0f;
 }
 
 vec3 GltfBsdf::dielectric_fresnel(float cos_oh) const {
@@ -85,8 +95,9 @@ vec3 GltfBsdf::transmission(const vec3& wo, const vec3& wi) const {
 
 vec3 GltfBsdf::eval(const vec3& wo, const vec3& wi) const {
   if (wo.z <= 0.0f || wi.z == 0.0f) return vec3(0.0f);
-  if (wi.z < 0.0f) return coat_scale_ * transmission(wo, wi);
-  vec3 f = coat_scale_ * reflection(wo, wi);
+  const float under_sheen = std::fmin(sheen_scaling(wo), sheen_scaling(wi));
+  if (wi.z < 0.0f) return coat_scale_ * under_sheen * transmission(wo, wi);
+  vec3 f = coat_scale_ * (under_sheen * reflection(wo, wi) + sheen_color_ * sheen_.eval(wo, wi));
   if (clearcoat_ > 0.0f) {
     const vec3 h = glm::normalize(wo + wi);
     f += clearcoat_ * coat_fresnel(wo.z) * coat_ggx_.D(h) * coat_ggx_.G2(wo, wi) / (4.0f * wo.z * wi.z);
@@ -96,7 +107,8 @@ vec3 GltfBsdf::eval(const vec3& wo, const vec3& wi) const {
 
 float GltfBsdf::lobe_pdf(int lobe, const vec3& wo, const vec3& wi) const {
   switch (lobe) {
-    case kDiffuse: return wi.z > 0.0f ? wi.z * kInvPi : 0.0f;
+    case kDiffuse:
+    case kSheen: return wi.z > 0.0f ? wi.z * kInvPi : 0.0f;
     case kSpecular:
     case kClearcoat: {
       if (wi.z <= 0.0f) return 0.0f;
@@ -135,7 +147,8 @@ bool GltfBsdf::sample(const vec3& wo, float u_lobe, const vec2& u, BsdfSample& s
   for (float acc = weight_[0]; lobe < kLobeCount - 1 && u_lobe >= acc; acc += weight_[++lobe]) {}
   if (weight_[lobe] <= 0.0f) return false;
   switch (lobe) {
-    case kDiffuse: s.wi = sample_cosine_hemisphere(u); break;
+    case kDiffuse:
+    case kSheen: s.wi = sample_cosine_hemisphere(u); break;
     case kSpecular: s.wi = reflect(wo, ggx_.sample_visible(wo, u)); break;
     case kClearcoat: s.wi = reflect(wo, coat_ggx_.sample_visible(wo, u)); break;
     default: {

@@ -6,7 +6,8 @@
 //   metal      = D G / (4 |cos_o cos_i|) * Schlick(baseColor, 1, wo.h)
 //   dielectric = (1 - s max(F)) * [(1 - T) baseColor / pi + T baseColor btdf] + s F * D G / (4 |cos cos|)
 //   material   = mix(dielectric, metal, metallic)
-//   coated     = (1 - c Fc(n.wo)) * material + c Fc(n.wo) * D_c G_c / (4 |cos cos|)
+//   sheened    = sheenColor * D_charlie V + material * min(1 - max(sheenColor) E(wo), same for wi)
+//   coated     = (1 - c Fc(n.wo)) * sheened + c Fc(n.wo) * D_c G_c / (4 |cos cos|)
 // F is Schlick's with f0 = min(((ior-1)/(ior+1))^2 specularColor, 1) scaled by s = specular;
 // a refracting (volume) dielectric uses the exact Fresnel term instead, so glass conserves
 // energy and shows total internal reflection. btdf is a rough refraction (Walter et al.
@@ -17,6 +18,7 @@
 
 #include "renderer/integrator/materials.h"
 #include "renderer/integrator/microfacet.h"
+#include "renderer/integrator/sheen.h"
 
 namespace tessera {
 
@@ -35,7 +37,7 @@ inline vec3 sample_cosine_hemisphere(const vec2& u) {
 
 class GltfBsdf {
  public:
-  enum Lobe { kDiffuse, kSpecular, kTransmission, kClearcoat, kLobeCount };
+  enum Lobe { kDiffuse, kSpecular, kTransmission, kSheen, kClearcoat, kLobeCount };
 
   // `eta` = index of refraction beyond the surface / index on the side of wo.
   GltfBsdf(const ShadingPoint& sp, const vec3& wo, float eta);
@@ -61,6 +63,10 @@ class GltfBsdf {
   float specular_;
   float clearcoat_;
   GgxDistribution ggx_, coat_ggx_;
+  vec3 sheen_color_;
+  CharlieSheen sheen_;
+  float sheen_max_;  // max component of the sheen colour; 0 = no sheen
+  float sheen_scaling(const vec3& w) const;  // 1 - max(sheenColor) E(w): what the sheen lets through
   float coat_scale_;  // 1 - clearcoat * Fc(wo): what passes the coat, for wo
   float weight_[kLobeCount];  // lobe selection probabilities for this wo, summing to 1
 };
