@@ -2,8 +2,8 @@
 # Renders glTF scenes with tessera and with Blender Cycles at matched settings (uniform
 # white world of radiance 1, 8 bounces, no adaptive sampling or denoising, 2 threads, same
 # camera, size and samples), alternating A B A B, and prints a Markdown table of camera
-# samples per second (median per renderer) and their ratio. Also writes, per scene, a PNG
-# with the two images side by side into OUT_DIR.
+# samples per second (median per renderer) and their ratio; each run's times go to stderr.
+# Also writes, per scene, a PNG with the two images side by side into OUT_DIR.
 #   tools/compare-cycles.sh [--spp N] [--width W] [--height H] [--rounds R] [--out DIR] SCENE...
 # Needs: apt-get install blender python3-numpy openimageio-tools; a built build/tessera.
 # Render time is each renderer's own (tessera: "render X s"; Cycles: render_time in its EXR
@@ -53,7 +53,11 @@ for scene in "$@"; do
   c=$(printf '%s\n' "${c_times[@]}" | median)
   awk -v n="$name" -v t="$t" -v c="$c" -v s="$samples" \
     'BEGIN {printf "| %s | %.2f | %.2f | %.3f | %.3f | %.2fx |\n", n, t, c, s / t / 1e6, s / c / 1e6, c / t}'
-  oiiotool "$out/$name-tessera.exr" --colorconvert linear sRGB "$out/$name-cycles.exr" --colorconvert linear sRGB \
+  echo "$name: tessera ${t_times[*]} s; Cycles ${c_times[*]} s" >&2
+  # RGB only: tessera's EXR has an A channel and Cycles' has none, which would leave the
+  # Cycles half transparent in the PNG.
+  oiiotool "$out/$name-tessera.exr" --ch R,G,B --colorconvert linear sRGB \
+    "$out/$name-cycles.exr" --ch R,G,B --colorconvert linear sRGB \
     --mosaic 2x1 -o "$out/$name-tessera-vs-cycles.png" 2>/dev/null || true
 done
 echo
