@@ -32,7 +32,7 @@ trap 'rm -f helmet.exr' EXIT
 start=$SECONDS
 
 # --- The default scene (README.md shows this one) ----------------------------------------
-run tessera render scenes/cornell-box/cornell-box.gltf --width 960 --spp 256 -o docs/images/cornell-box.png
+run tessera render scenes/cornell-box/cornell-box.gltf --width 640 --spp 512 -o docs/images/cornell-box.png
 
 # --- DamagedHelmet: automatic camera, 'auto' background, environment map, AOVs ------------
 run tessera render scenes/khronos/DamagedHelmet/glTF-Binary/DamagedHelmet.glb --width 640 --spp 64 -o docs/images/helmet-no-envmap.png
