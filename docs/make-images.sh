@@ -35,7 +35,7 @@ start=$SECONDS
 run tessera render scenes/cornell-box/cornell-box.gltf --width 640 --spp 512 -o docs/images/cornell-box.png
 
 # --- DamagedHelmet: automatic camera, 'auto' background, environment map, AOVs ------------
-run tessera render scenes/khronos/DamagedHelmet/glTF-Binary/DamagedHelmet.glb --width 640 --spp 64 -o docs/images/helmet-no-envmap.png
+run tessera render scenes/khronos/DamagedHelmet/glTF-Binary/DamagedHelmet.glb --width 640 --spp 64 --background 0 -o docs/images/helmet-no-envmap.png
 run tessera render scenes/khronos/DamagedHelmet/glTF-Binary/DamagedHelmet.glb --width 640 --spp 128 --envmap scenes/env/spruit_sunrise_1k.hdr --aov albedo,normal,depth -o helmet.exr --preview docs/images/helmet-envmap.png
 run tessera render scenes/khronos/DamagedHelmet/glTF-Binary/DamagedHelmet.glb --width 640 --spp 128 --envmap scenes/env/spruit_sunrise_1k.hdr --envmap-rotate 180 -o docs/images/helmet-envmap-rotate-180.png
 run oiiotool helmet.exr --ch R=Albedo.R,G=Albedo.G,B=Albedo.B --colorconvert linear sRGB -d uint8 -o docs/images/aov-albedo.png
