@@ -116,6 +116,12 @@ TEST(Limits, AbsurdSizesAreRefusedByTheParser) {
   EXPECT_FALSE(fs::exists("/tmp/never-written.exr"));
 }
 
+TEST(Limits, MoreThan2To28PixelsIsRefused) {
+  const auto r = tessera("render " + quote(box()) + " --width 32768 --height 16384 -q -o /tmp/never-written.exr");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, "tessera: error: --width 32768 --height 16384: more than 268 million pixels\n");
+}
+
 // A tile larger than the image is allowed: the image is one tile, and the same image.
 TEST(Limits, ATileLargerThanTheImageIsOneTileAndTheSameImage) {
   const std::string dir = test::make_temp_dir("limits-tile");
