@@ -6,7 +6,7 @@
 #   TESSERA=build-docs/tessera docs/make-images.sh
 #
 # Needs oiiotool (Debian 12: openimageio-tools, in third_party_config/debian-packages.txt)
-# to turn the EXR's AOV layers into PNGs. About 6 minutes on 2 cores (337 s measured); renders run one after
+# to turn the EXR's AOV layers into PNGs. About 3 to 6 minutes on 2 cores (198 s measured); renders run one after
 # the other, each on all cores. The one intermediate file, helmet.exr, is deleted at the end.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
