@@ -33,7 +33,7 @@ class Environment {
   vec3 uv_to_direction(const vec2& uv) const;
 
   // Image coordinates in [0,1]^2 (u right, v down) of a world direction: the centre of the
-  // image faces +X, u grows towards -Z (as seen from above, clockwise), the top row is +Y.
+  // image faces +X, u grows towards +Z (u = 0.75 looks along +Z), the top row is +Y.
   // This is Blender's equirectangular mapping after its glTF axis conversion (Blender
   // u = 0.5 - atan2(y_b, x_b) / 2 pi with y_b = -z), so one file lights both the same way.
   vec2 direction_to_uv(const vec3& direction) const;
