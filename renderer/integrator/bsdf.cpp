@@ -24,6 +24,9 @@ GltfBsdf::GltfBsdf(const ShadingPoint& sp, const vec3& wo, float eta)
       sheen_color_(sp.sheen_color),
       sheen_{std::fmax(kMinSheenAlpha, sp.sheen_roughness * sp.sheen_roughness)},
       sheen_max_(max_component(sp.sheen_color)) {
+  // A volume of index 1 is invisible: its microfacets bend nothing, whatever their roughness
+  // (treating it as thin-walled, as refracts_ does, must not blur it either).
+  if (!sp.thin_walled && transmission_ > 0.0f && !refracts_) ggx_.alpha = kMinAlpha;
   const float r = (sp.ior - 1.0f) / (sp.ior + 1.0f);
   f0_ = glm::min(vec3(r * r) * sp.specular_color, vec3(1.0f));
   coat_scale_ = 1.0f - clearcoat_ * coat_fresnel(wo.z);
