@@ -20,6 +20,7 @@ struct RenderOptions {
   std::string scheduler = "tiles", tile_order = "scanline";
   std::string stats_json, trace, heatmap;  // load-balancing outputs, empty: none
   long long seed = 0;
+  std::string sampler = "sobol";
   std::string camera, scene;
   float aperture = 0.0f, focus_distance = 0.0f, fov = 0.0f;
   std::string background = "auto";

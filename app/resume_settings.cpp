@@ -56,8 +56,8 @@ std::string resume_settings(const RenderOptions& o, const RenderSettings& s, con
   if (s.aovs.depth) aovs += "depth,";
   if (!aovs.empty()) aovs.pop_back();
   std::string text = fmt::format("format=1\nscene-bytes={}\nscene={}\n", hash_file(o.scene_path), o.scene);
-  text += fmt::format("width={}\nheight={}\nspp={}\nmax-bounces={}\nseed={}\n", s.width, s.height, s.spp,
-                      s.max_bounces, s.seed);
+  text += fmt::format("width={}\nheight={}\nspp={}\nmax-bounces={}\nseed={}\nsampler={}\n", s.width, s.height,
+                      s.spp, s.max_bounces, s.seed, sampler_name(s.sampler));
   text += camera_lines(camera);
   text += fmt::format("background={}\n", floats(&env.background.r, 3));
   text += fmt::format("envmap-bytes={}\nenvmap-scale={}\nenvmap-rotate={}\n",

@@ -37,7 +37,7 @@ void render_tile(const RenderScene& scene, const RenderCamera& camera, const Ren
       float depth = 0.0f;
       std::uint32_t hits = 0;
       for (int s = wave.begin; s < wave.end; ++s) {
-        SampleStream rng(x, y, s, settings.seed);
+        Sampler rng(settings.sampler, x, y, s, settings.seed);
         const vec2 jitter = rng.next2();
         const vec2 lens = rng.next2();
         const Ray ray = camera.generate_ray({(x + jitter.x) * inv_w, (y + jitter.y) * inv_h}, lens);

@@ -24,6 +24,7 @@ struct RenderSettings {
   int threads = 0;  // 0 = all cores
   int tile_size = 32;
   std::uint32_t seed = 0;
+  SamplerKind sampler = SamplerKind::sobol;
   AovSelection aovs;
   SchedulerKind scheduler = SchedulerKind::tiles;
   TileOrder tile_order = TileOrder::scanline;

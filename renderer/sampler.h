@@ -1,12 +1,35 @@
-// Random numbers that depend only on (pixel, sample index, dimension, seed), never on the
-// thread, tile or order of work: the image is identical bit for bit however it is split.
+// The random numbers of one camera sample. Every number is a function of (pixel, sample
+// index, draw, seed) alone, never of the thread, tile or order of work: the image is the same
+// bit for bit however it is split, and a resumed render continues exactly.
+//
+// The integrator asks for draws in a fixed order (camera jitter, lens, then per bounce: light
+// selection and point, environment direction, lobe and direction, roulette), each draw 1, 2
+// or 3 numbers meant to be used together.
+//   sobol:       each draw is a point of a padded, Owen-scrambled Sobol sequence (pbrt-v4's
+//                PaddedSobolSampler, Burley 2020): over a pixel's samples, every 2D draw is a
+//                (0,2)-sequence, so each of its elementary intervals holds one point per 2^k
+//                samples; the sample order is shuffled (Owen-scrambling the index) and the
+//                values scrambled with seeds hashed from the pixel and the draw, so pixels and
+//                draws are decorrelated. The third number of a 3D draw (a lobe or light choice)
+//                is Sobol's dimension 2 of the same point.
+//   independent: every number an independent hash (white noise), for comparison.
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <string>
+#include <vector>
 
 #include "renderer/math.h"
+#include "renderer/sobol.h"
 
 namespace tessera {
+
+enum class SamplerKind : std::uint8_t { sobol, independent };
+
+const char* sampler_name(SamplerKind kind);
+SamplerKind parse_sampler(const std::string& name);  // throws std::invalid_argument
+const std::vector<std::string>& sampler_names();
 
 // SplitMix64's finalizer: a bijective 64-bit mix with full avalanche.
 inline std::uint64_t mix64(std::uint64_t z) {
@@ -15,27 +38,47 @@ inline std::uint64_t mix64(std::uint64_t z) {
   return z ^ (z >> 31);
 }
 
-// The random stream of one camera sample. Dimension d of the stream is a hash of the
-// stream key and d, so streams never overlap and skipping dimensions costs nothing.
-class SampleStream {
+class Sampler {
  public:
-  SampleStream(std::uint32_t px, std::uint32_t py, std::uint32_t sample, std::uint32_t seed)
-      : key_(mix64(mix64((std::uint64_t(seed) << 32) | sample) ^
-                   ((std::uint64_t(py) << 32) | px))) {}
+  Sampler(SamplerKind kind, std::uint32_t px, std::uint32_t py, std::uint32_t sample, std::uint32_t seed)
+      : pixel_key_(mix64(mix64((std::uint64_t(seed) << 32) | kind_tag(kind)) ^ ((std::uint64_t(py) << 32) | px))),
+        sample_(sample),
+        kind_(kind) {}
 
-  float get(std::uint32_t dimension) const {
-    const std::uint64_t bits = mix64(key_ + 0x9e3779b97f4a7c15ULL * (dimension + 1));
-    return static_cast<float>(bits >> 40) * 0x1.0p-24f;  // 24 bits: exactly in [0, 1)
-  }
-  float next() { return get(dimension_++); }
+  float next() { return draw(1)[0]; }
   vec2 next2() {
-    const float a = next();
-    return {a, next()};
+    const auto v = draw(2);
+    return {v[0], v[1]};
+  }
+  // A 2D point (x, y) and a choice z drawn together.
+  vec3 next3() {
+    const auto v = draw(3);
+    return {v[0], v[1], v[2]};
   }
 
  private:
-  std::uint64_t key_;
-  std::uint32_t dimension_ = 0;
+  static std::uint64_t kind_tag(SamplerKind kind) { return kind == SamplerKind::sobol ? 0x50b01 : 0; }
+
+  std::array<float, 3> draw(int n) {
+    const std::uint64_t key = mix64(pixel_key_ + 0x9e3779b97f4a7c15ULL * ++draws_);
+    std::array<float, 3> v{};
+    if (kind_ == SamplerKind::independent) {
+      for (int d = 0; d < n; ++d) {
+        const std::uint64_t bits = mix64(key ^ (mix64(sample_) + d));
+        v[d] = static_cast<float>(bits >> 40) * 0x1.0p-24f;  // 24 bits: exactly in [0, 1)
+      }
+      return v;
+    }
+    const std::uint32_t index = owen_scramble(sample_, static_cast<std::uint32_t>(key));
+    for (int d = 0; d < n; ++d)
+      v[d] = bits_to_unit_float(owen_scramble(sobol_bits(index, d), static_cast<std::uint32_t>(mix64(key ^ (d + 1)))));
+    return v;
+  }
+
+  std::uint64_t pixel_key_;
+  std::uint32_t sample_;
+  std::uint32_t draws_ = 0;
+  SamplerKind kind_;
 };
 
 }  // namespace tessera

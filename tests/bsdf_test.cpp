@@ -71,7 +71,7 @@ TEST(GltfBsdf, SamplingMatchesItsPdfChiSquare) {
       const vec3 wo = direction(theta);
       const GltfBsdf bsdf(c.sp, wo, c.eta);
       auto sample = [&](int i) -> std::optional<glm::vec3> {
-        SampleStream rng(i, 0, 0, 17);
+        Sampler rng(SamplerKind::independent, i, 0, 0, 17);
         BsdfSample s;
         const float u = rng.next();
         if (!bsdf.sample(wo, u, rng.next2(), s)) return std::nullopt;
@@ -92,7 +92,7 @@ TEST(GltfBsdf, SampleAgreesWithEvalAndPdf) {
     const vec3 wo = direction(35.0f);
     const GltfBsdf bsdf(c.sp, wo, c.eta);
     for (int i = 0; i < 2000; ++i) {
-      SampleStream rng(i, 1, 0, 5);
+      Sampler rng(SamplerKind::independent, i, 1, 0, 5);
       BsdfSample s;
       const float u = rng.next();
       if (!bsdf.sample(wo, u, rng.next2(), s)) continue;
@@ -134,7 +134,7 @@ TEST(GltfBsdf, ReflectionIsReciprocal) {
   for (const Config& c : configs()) {
     if (c.sp.clearcoat > 0.0f) continue;
     for (int i = 0; i < 200; ++i) {
-      SampleStream rng(i, 2, 0, 9);
+      Sampler rng(SamplerKind::independent, i, 2, 0, 9);
       const vec3 a = direction(85.0f * rng.next(), 360.0f * rng.next());
       const vec3 b = direction(85.0f * rng.next(), 360.0f * rng.next());
       const vec3 fab = GltfBsdf(c.sp, a, c.eta).eval(a, b), fba = GltfBsdf(c.sp, b, c.eta).eval(b, a);
@@ -156,7 +156,7 @@ Albedo albedo(const ShadingPoint& sp, const vec3& wo, float eta) {
   double sampled = 0.0;
   const int n = 400000;
   for (int i = 0; i < n; ++i) {
-    SampleStream rng(i, 3, 0, 11);
+    Sampler rng(SamplerKind::independent, i, 3, 0, 11);
     BsdfSample s;
     const float u = rng.next();
     if (bsdf.sample(wo, u, rng.next2(), s))

@@ -27,7 +27,7 @@ vec2 blender_uv(const vec3& d) {  // Cycles' direction_to_equirectangular, v fro
 TEST(Environment, MappingMatchesBlender) {
   const Environment env(EnvironmentParams{});
   for (int i = 0; i < 1000; ++i) {
-    SampleStream rng(i, 0, 0, 3);
+    Sampler rng(SamplerKind::independent, i, 0, 0, 3);
     const float z = 2 * rng.next() - 1, phi = 2 * kPi * rng.next(), r = std::sqrt(1 - z * z);
     const vec3 d(r * std::cos(phi), z, r * std::sin(phi));
     const vec2 ours = env.direction_to_uv(d), theirs = blender_uv(d);
@@ -80,7 +80,7 @@ TEST(Environment, ImportanceSamplingMatchesItsPdfChiSquare) {
     p.rotate_degrees = rotate;
     const Environment env(p);
     auto sample = [&](int i) -> std::optional<glm::vec3> {
-      SampleStream rng(i, 0, 0, 23);
+      Sampler rng(SamplerKind::independent, i, 0, 0, 23);
       float pdf;
       const vec3 d = env.sample(rng.next2(), pdf);
       if (!(pdf > 0.0f)) return std::nullopt;

@@ -55,13 +55,12 @@ vec3 punctual_light_contribution(const RenderScene& scene, const ShadingContext&
 }
 
 // One light sample on the emissive triangles, weighted against BSDF sampling (MIS).
-vec3 area_light_contribution(const RenderScene& scene, const ShadingContext& c, SampleStream& rng,
+vec3 area_light_contribution(const RenderScene& scene, const ShadingContext& c, Sampler& rng,
                              LightSampling mode, PathCounters& counters) {
-  const float u_select = rng.next();
-  const vec2 u_point = rng.next2();
+  const vec3 u = rng.next3();  // the point (x, y) and the light (z), stratified together
   AreaLightSample ls;
   vec3 wi_local;
-  if (!scene.area_lights->sample(c.s.p, u_select, u_point, ls) || !c.usable(ls.wi, wi_local)) return vec3(0.0f);
+  if (!scene.area_lights->sample(c.s.p, u.z, {u.x, u.y}, ls) || !c.usable(ls.wi, wi_local)) return vec3(0.0f);
   const vec3 f = c.bsdf.eval(c.wo_local, wi_local);
   if (f == vec3(0.0f) || ls.radiance == vec3(0.0f)) return vec3(0.0f);
   ++counters.rays;
@@ -71,7 +70,7 @@ vec3 area_light_contribution(const RenderScene& scene, const ShadingContext& c, 
 }
 
 // One direction towards the environment image, weighted against BSDF sampling (MIS).
-vec3 environment_contribution(const RenderScene& scene, const ShadingContext& c, SampleStream& rng,
+vec3 environment_contribution(const RenderScene& scene, const ShadingContext& c, Sampler& rng,
                               LightSampling mode, PathCounters& counters) {
   const vec2 u = rng.next2();
   float pdf;
@@ -89,7 +88,7 @@ vec3 environment_contribution(const RenderScene& scene, const ShadingContext& c,
 }  // namespace
 
 vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ray,
-                SampleStream& rng, FirstHit& first, PathCounters& counters) {
+                Sampler& rng, FirstHit& first, PathCounters& counters) {
   vec3 radiance(0.0f), throughput(1.0f);
   vec3 absorption(0.0f);  // of the volume the ray travels in (Beer-Lambert); 0 = none
   float bsdf_pdf = 0.0f;  // solid-angle pdf of the direction that led here; 0 = camera ray
@@ -144,8 +143,8 @@ vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ra
     if (environment_sampling) radiance += throughput * environment_contribution(scene, ctx, rng, mode, counters);
 
     BsdfSample bs;
-    const float u_lobe = rng.next();
-    if (!bsdf.sample(wo_local, u_lobe, rng.next2(), bs)) break;
+    const vec3 u = rng.next3();  // the direction (x, y) and the lobe (z), stratified together
+    if (!bsdf.sample(wo_local, u.z, {u.x, u.y}, bs)) break;
     const vec3 wi = frame.to_world(bs.wi);
     if ((glm::dot(wi, s.ng) > 0.0f) == bs.transmitted) break;  // shading and geometry disagree
     throughput *= bs.f * (std::fabs(bs.wi.z) / bs.pdf);

@@ -36,6 +36,6 @@ struct PathCounters {
 // Radiance arriving along `ray`. Never returns a non-finite value: such a sample is
 // counted in counters.dropped and returns zero.
 vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ray,
-                SampleStream& rng, FirstHit& first, PathCounters& counters);
+                Sampler& rng, FirstHit& first, PathCounters& counters);
 
 }  // namespace tessera
