@@ -35,6 +35,8 @@ struct RenderOptions {
   std::string resume;  // a partial EXR to continue
   std::string light_sampling = "mis";
   float clamp = 0.0f;
+  float noise_threshold = 0.0f;  // adaptive sampling: 0 off
+  int min_spp = 0;  // adaptive sampling: 0 automatic
 };
 
 struct InfoOptions {

@@ -18,6 +18,12 @@ namespace {
 constexpr std::uint64_t kFilmBytesPerPixel = 24 + 4 + 12 + 16 + 28;
 // Per AOV channel: its sum in the film, the resolved value, the EXR channel, the resume layer.
 constexpr std::uint64_t kAovChannelBytes = 4 * 4;
+// With the halves AOV or adaptive sampling, per pixel: the odd radiance sums (24 B) and their
+// resume layer (24 B), the even and odd means resolved and in the EXR (48 B), the count
+// (spp layer, 12 B) and the converged flag (5 B); per albedo or normal channel, its odd sum,
+// resume layer, two means and two EXR channels (24 B).
+constexpr std::uint64_t kOddBytesPerPixel = 24 + 24 + 48 + 12 + 5;
+constexpr std::uint64_t kOddAovChannelBytes = 6 * 4;
 // Embree's BVH with its triangle leaves, the baked world-space vertices and the hit
 // attributes: measured near 100-150 B on the shipped scenes; rounded up.
 constexpr std::uint64_t kBvhBytesPerTriangle = 160;
@@ -37,11 +43,13 @@ std::uint64_t environment_texels(const std::string& path) {
 }  // namespace
 
 MemoryEstimate estimate_render_memory(const SceneDescription& scene, int width, int height, AovSelection aovs,
-                                      const std::string& envmap_path) {
+                                      const std::string& envmap_path, bool adaptive) {
   MemoryEstimate m;
   const std::uint64_t pixels = static_cast<std::uint64_t>(width) * height;
   const int aov_channels = (aovs.albedo ? 3 : 0) + (aovs.normal ? 3 : 0) + (aovs.depth ? 2 : 0);
   m.film = pixels * (kFilmBytesPerPixel + aov_channels * kAovChannelBytes);
+  if (aovs.halves || adaptive)
+    m.film += pixels * (kOddBytesPerPixel + ((aovs.albedo ? 3 : 0) + (aovs.normal ? 3 : 0)) * kOddAovChannelBytes);
   for (const Image& img : scene.images)  // 8-bit stays RGBA8, deeper becomes float RGBA
     m.textures += static_cast<std::uint64_t>(img.width) * img.height * (img.bits_per_channel == 8 ? 4 : 16);
   std::uint64_t triangles = 0;

@@ -19,8 +19,9 @@ struct MemoryEstimate {
   std::uint64_t total() const { return film + textures + bvh + environment; }
 };
 
+// `adaptive`: adaptive sampling keeps the odd half's sums even without the halves AOV.
 MemoryEstimate estimate_render_memory(const SceneDescription& scene, int width, int height, AovSelection aovs,
-                                      const std::string& envmap_path);
+                                      const std::string& envmap_path, bool adaptive = false);
 
 // What the machine can give: TESSERA_MEMORY_AVAILABLE (bytes) when set, to cap tessera
 // below the machine or to test this check; else MemAvailable from /proc/meminfo; 0 when

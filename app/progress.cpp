@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <string>
 
@@ -40,10 +41,19 @@ void ProgressDisplay::run() {
   while (!wake_.wait_for(lock, period, [this] { return stop_; })) draw(false);
 }
 
+std::string ProgressDisplay::converged_text() const {
+  const std::uint64_t pixels = monitor_.pixels_total.load(std::memory_order_relaxed);
+  if (!options_.adaptive || pixels == 0) return "";
+  const double share = static_cast<double>(monitor_.pixels_converged.load(std::memory_order_relaxed)) /
+                       static_cast<double>(pixels);
+  return fmt::format(", {:.0f}% of pixels converged", 100.0 * share);
+}
+
 void ProgressDisplay::draw(bool final_line) {
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   const std::uint64_t done = monitor_.samples_done.load(std::memory_order_relaxed);
-  const std::uint64_t total = options_.total_samples;
+  const std::uint64_t live = monitor_.samples_total.load(std::memory_order_relaxed);
+  const std::uint64_t total = std::max(live ? live : options_.total_samples, done);
   const double fraction = total ? static_cast<double>(done) / total : 1.0;
   const double rate = elapsed > 0 ? done / elapsed : 0.0;
   const double eta = rate > 0 ? (total - done) / rate : -1.0;
@@ -56,11 +66,13 @@ void ProgressDisplay::draw(bool final_line) {
     line = fmt::format("\r{}[{}{}] {:5.1f}%  {} elapsed  ETA {}  {:.2f} M samples/s", options_.label,
                        std::string(filled, '#'), std::string(kWidth - filled, '.'), 100.0 * fraction,
                        format_duration(elapsed), format_duration(eta), rate * 1e-6);
+    line += converged_text();
     if (final_line) line += "\n";
   } else {
     if (final_line) return;  // the summary follows; a log needs no closing bar
-    line = fmt::format("{}rendering: {:.1f}% done, {} elapsed, ETA {}, {:.2f} M samples/s\n", options_.label,
-                       100.0 * fraction, format_duration(elapsed), format_duration(eta), rate * 1e-6);
+    line = fmt::format("{}rendering: {:.1f}% done, {} elapsed, ETA {}, {:.2f} M samples/s{}\n", options_.label,
+                       100.0 * fraction, format_duration(elapsed), format_duration(eta), rate * 1e-6,
+                       converged_text());
   }
   std::fputs(line.c_str(), stderr);
   std::fflush(stderr);

@@ -1,5 +1,6 @@
 // Render progress on stderr: a one-line bar with percent, elapsed, ETA and samples/s when
-// stderr is a terminal, a plain line every few seconds otherwise, nothing when quiet.
+// stderr is a terminal, a plain line every few seconds otherwise, nothing when quiet. The
+// total follows the monitor's, which adaptive sampling lowers as pixels converge.
 #pragma once
 
 #include <atomic>
@@ -18,6 +19,7 @@ struct ProgressOptions {
   bool quiet = false;
   std::string label;  // starts every line, e.g. which run of a series this is
   bool erase_when_done = false;  // a terminal's bar vanishes at the end (the caller prints a result)
+  bool adaptive = false;  // also say how many pixels converged
 };
 
 class ProgressDisplay {
@@ -30,6 +32,7 @@ class ProgressDisplay {
  private:
   void run();
   void draw(bool final_line);
+  std::string converged_text() const;
 
   const RenderMonitor& monitor_;
   ProgressOptions options_;

@@ -81,9 +81,11 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
       ->capture_default_str();
   cmd->add_option("--aov", o.aovs,
                   "Extra EXR layers: albedo (Albedo.RGB), normal (N.XYZ, world space), depth (Z), "
-                  "cost (cost.time: CPU seconds spent on the pixel's tile)")
+                  "cost (cost.time: CPU seconds spent on the pixel's tile), halves (even.RGB and odd.RGB: "
+                  "the means of the even- and odd-numbered samples, also even/odd.Albedo.RGB and even/odd.N.XYZ "
+                  "with albedo and normal; spp: each pixel's sample count)")
       ->delimiter(',')
-      ->check(CLI::IsMember({"albedo", "normal", "depth", "cost"}));
+      ->check(CLI::IsMember({"albedo", "normal", "depth", "cost", "halves"}));
   cmd->add_flag("--half", o.half, "Write 16-bit half floats to the EXR instead of 32-bit floats");
   cmd->add_option("--exposure", o.exposure, "Exposure in stops applied to non-EXR outputs (display formats: then sRGB encoded; .hdr/.tif/.pfm: linear)")
       ->check(CLI::Range(-64.0f, 64.0f))->capture_default_str();
@@ -110,6 +112,17 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
                   "0 = off)")
       ->check(CLI::Range(0.0f, 1e30f))
       ->capture_default_str();
+  cmd->add_option("--noise-threshold", o.noise_threshold,
+                  "Adaptive sampling, as Cycles' Noise Threshold: between sample waves a pixel whose estimated "
+                  "relative error (from the means of its even- and odd-numbered samples) is below this stops, "
+                  "unless a neighbour is still noisy; --spp is then the most. E.g. 0.01. Writes the spp layer "
+                  "(0 = off)")
+      ->check(CLI::Range(0.0f, 1e6f))
+      ->capture_default_str();
+  cmd->add_option("--min-spp", o.min_spp,
+                  "Adaptive sampling: samples every pixel gets before it may stop [default: as Cycles, "
+                  "max(4, ceil(16 / threshold^0.3)): 64 at 0.01]")
+      ->check(CLI::Range(4, 1 << 24));
 }
 
 namespace {
@@ -161,7 +174,30 @@ ImageWriteParams write_params(const RenderOptions& o, const RenderSettings& sett
   meta.camera_name = camera.name;
   meta.partial = partial;
   meta.target_spp = settings.spp;
+  if (settings.adaptive.on()) {
+    meta.noise_threshold = settings.adaptive.threshold;
+    meta.min_spp = adaptive_min_spp(settings.adaptive, settings.spp);
+    meta.converged_pixels = stats.converged_pixels;
+  }
   return write;
+}
+
+// "62% of pixels converged": how much adaptive sampling saved, and where the counts ended.
+void print_adaptive_summary(const RenderSettings& settings, const RenderResult& result) {
+  const FilmState& film = result.film;
+  std::uint64_t total = 0;
+  std::uint32_t most = 0;
+  for (std::uint32_t n : film.samples) {
+    total += n;
+    most = std::max(most, n);
+  }
+  const double pixels = static_cast<double>(film.pixel_count());
+  fmt::print(stderr,
+             "tessera: noise threshold {}, min spp {}: {:.0f}% of pixels converged; {:.1f} spp on average "
+             "(fewest {}, most {}), {:.0f}% of the samples of {} spp everywhere\n",
+             settings.adaptive.threshold, adaptive_min_spp(settings.adaptive, settings.spp),
+             100.0 * result.stats.converged_pixels / pixels, total / pixels, result.image.samples_per_pixel, most,
+             100.0 * total / (pixels * settings.spp), settings.spp);
 }
 
 void print_summary(const RenderOptions& o, const std::string& output, const RenderSettings& settings,
@@ -175,6 +211,7 @@ void print_summary(const RenderOptions& o, const std::string& output, const Rend
              s.rays / s.seconds * 1e-6, scheduler_name(settings.scheduler), tile_order_name(settings.tile_order),
              100.0 * s.efficiency, s.imbalance,
              s.dropped_samples ? fmt::format(", {} non-finite samples dropped", s.dropped_samples) : "");
+  if (settings.adaptive.on()) print_adaptive_summary(settings, result);
   std::string why;
   if (s.cancelled) why = fmt::format("interrupted at {} spp; ", spp);
   else if (s.time_limited) why = fmt::format("time limit reached at {} spp; ", spp);
@@ -195,12 +232,6 @@ void write_outputs(const std::string& output, const std::string& preview, const 
   write_image(output, image, params);
   params.resume_film = nullptr;
   if (!preview.empty()) write_image(preview, image, params);
-}
-
-std::uint64_t samples_in(const FilmState& film) {
-  std::uint64_t n = 0;
-  for (std::uint32_t s : film.samples) n += s;
-  return n;
 }
 
 }  // namespace
@@ -246,7 +277,10 @@ int run_render(const RenderOptions& o) {
     settings.aovs.albedo |= a == "albedo";
     settings.aovs.normal |= a == "normal";
     settings.aovs.depth |= a == "depth";
+    settings.aovs.halves |= a == "halves";
   }
+  settings.adaptive = {o.noise_threshold, o.min_spp};
+  if (o.min_spp > 0 && o.noise_threshold <= 0.0f) throw UsageError("--min-spp: needs --noise-threshold");
   const bool cost_layer = std::find(o.aovs.begin(), o.aovs.end(), "cost") != o.aovs.end();
   settings.scheduler = parse_scheduler(o.scheduler);
   settings.tile_order = parse_tile_order(o.tile_order);
@@ -264,7 +298,8 @@ int run_render(const RenderOptions& o) {
       for (const TriangleMesh& p : m.primitives) n += p.triangle_count();
     return n;
   }();
-  check_render_memory(estimate_render_memory(loaded.scene, settings.width, settings.height, settings.aovs, o.envmap));
+  check_render_memory(estimate_render_memory(loaded.scene, settings.width, settings.height, settings.aovs, o.envmap,
+                                             settings.adaptive.on()));
   t0 = std::chrono::steady_clock::now();
   RenderScene scene(std::move(loaded.scene), env);
   const double setup_seconds = seconds_since(t0);
@@ -277,7 +312,8 @@ int run_render(const RenderOptions& o) {
   FilmState resumed;
   if (!o.resume.empty()) {
     check_resume_settings(o.resume, resumed_settings, resume_text);
-    resumed = read_resume_film(o.resume, settings.width, settings.height, settings.aovs, settings.spp);
+    const int min_spp = settings.adaptive.on() ? adaptive_min_spp(settings.adaptive, settings.spp) : 0;
+    resumed = read_resume_film(o.resume, {settings.width, settings.height, settings.aovs, settings.spp, min_spp});
   }
   if (o.checkpoint > 0.0) {
     settings.checkpoint_interval = o.checkpoint;
@@ -285,7 +321,9 @@ int run_render(const RenderOptions& o) {
     // is still in memory, and the final write reports the error if it persists.
     settings.on_checkpoint = [&](const Film& film, const RenderStats& stats) {
       try {
-        write_outputs(output, o.preview, film.resolve(), write_params(o, settings, rc, camera, stats, true),
+        RenderStats at_checkpoint = stats;
+        at_checkpoint.converged_pixels = film.converged_pixels();
+        write_outputs(output, o.preview, film.resolve(), write_params(o, settings, rc, camera, at_checkpoint, true),
                       film.state(), resume_text);
       } catch (const OutputError& e) {
         fmt::print(stderr, "tessera: warning: checkpoint not written: {}\n", e.what());
@@ -297,9 +335,10 @@ int run_render(const RenderOptions& o) {
   InterruptHandler interrupts(monitor.cancel);  // stays installed while writing
   RenderResult result;
   {
-    const std::uint64_t total =
-        static_cast<std::uint64_t>(settings.width) * settings.height * settings.spp - samples_in(resumed);
-    ProgressDisplay progress(monitor, {total, o.quiet, "", false});
+    const std::uint64_t total = o.resume.empty()
+                                    ? static_cast<std::uint64_t>(settings.width) * settings.height * settings.spp
+                                    : samples_left(resumed, settings.spp);
+    ProgressDisplay progress(monitor, {total, o.quiet, "", false, settings.adaptive.on()});
     result = render_frame(scene, rc, settings, &monitor, o.resume.empty() ? nullptr : &resumed);
   }
   if (cost_layer) result.image.cost = tile_cost_image(result.profile);
@@ -307,7 +346,7 @@ int run_render(const RenderOptions& o) {
                         fmt::format("{}: {}, {}, {} threads", std::filesystem::path(o.scene_path).filename().string(),
                                     o.scheduler, o.tile_order, result.stats.threads));
   if (result.image.samples_per_pixel > 0) {
-    const bool partial = result.image.samples_per_pixel < settings.spp;
+    const bool partial = samples_left(result.film, settings.spp) > 0;  // done: converged, or at --spp
     write_outputs(output, o.preview, result.image, write_params(o, settings, rc, camera, result.stats, partial),
                   result.film, resume_text);
   }

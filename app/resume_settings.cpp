@@ -54,6 +54,7 @@ std::string resume_settings(const RenderOptions& o, const RenderSettings& s, con
   if (s.aovs.albedo) aovs += "albedo,";
   if (s.aovs.normal) aovs += "normal,";
   if (s.aovs.depth) aovs += "depth,";
+  if (s.aovs.halves) aovs += "halves,";
   if (!aovs.empty()) aovs.pop_back();
   std::string text = fmt::format("format=1\nscene-bytes={}\nscene={}\n", hash_file(o.scene_path), o.scene);
   text += fmt::format("width={}\nheight={}\nspp={}\nmax-bounces={}\nseed={}\nsampler={}\n", s.width, s.height,
@@ -63,15 +64,31 @@ std::string resume_settings(const RenderOptions& o, const RenderSettings& s, con
   text += fmt::format("envmap-bytes={}\nenvmap-scale={}\nenvmap-rotate={}\n",
                       env.image_path.empty() ? "none" : hash_file(env.image_path), env.scale, env.rotate_degrees);
   text += fmt::format("aovs={}\n", aovs.empty() ? "none" : aovs);
+  // Only with adaptive sampling, so frames from before it still resume; the check below
+  // compares both ways, so neither side can drop these lines unnoticed.
+  if (s.adaptive.on())
+    text += fmt::format("noise-threshold={}\nmin-spp={}\n", s.adaptive.threshold, adaptive_min_spp(s.adaptive, s.spp));
   return text;
 }
 
+namespace {
+
+std::string value_of(const std::vector<std::pair<std::string, std::string>>& lines, const std::string& key) {
+  for (const auto& [k, v] : lines)
+    if (k == key) return v;
+  return "(nothing)";
+}
+
+}  // namespace
+
 void check_resume_settings(const std::string& path, const std::string& stored, const std::string& current) {
-  const auto then = parse_lines(stored);
-  for (const auto& [key, now] : parse_lines(current)) {
-    std::string was = "(nothing)";
-    for (const auto& [k, v] : then)
-      if (k == key) was = v;
+  const auto then = parse_lines(stored), now_lines = parse_lines(current);
+  auto keys = now_lines;  // this render's settings, then any the file has that it lacks
+  for (const auto& line : then)
+    if (value_of(now_lines, line.first) == "(nothing)") keys.push_back(line);
+  for (const auto& line : keys) {
+    const std::string& key = line.first;
+    const std::string was = value_of(then, key), now = value_of(now_lines, key);
     if (was == now) continue;
     if (key == "scene-bytes")
       throw UsageError(fmt::format("--resume {}: was rendered from another scene file (its bytes hash to {}, this "

@@ -1,7 +1,8 @@
 // What a resumable EXR records about how it was made, and the check that a render asked to
 // --resume it is the same render: the same scene file (a hash of its bytes), the same
 // settings that affect pixels (size, spp, bounces, seed, the resolved camera and lens, the
-// background or environment map and its bytes, the AOVs). Threads, tile size, scheduler,
+// background or environment map and its bytes, the AOVs, the noise threshold and minimum
+// of adaptive sampling). Threads, tile size, scheduler,
 // tile order, --half and --exposure may differ: they never change the sums.
 #pragma once
 

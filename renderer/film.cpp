@@ -4,7 +4,7 @@
 
 namespace tessera {
 
-FilmState FilmState::empty(int width, int height, AovSelection aovs) {
+FilmState FilmState::empty(int width, int height, AovSelection aovs, bool adaptive) {
   FilmState s;
   s.width = width;
   s.height = height;
@@ -18,24 +18,35 @@ FilmState FilmState::empty(int width, int height, AovSelection aovs) {
     s.depth.assign(n, 0.0f);
     s.hits.assign(n, 0);
   }
+  if (aovs.halves || adaptive) {
+    s.radiance_odd.assign(n, glm::dvec3(0.0));
+    if (aovs.albedo) s.albedo_odd.assign(n, vec3(0.0f));
+    if (aovs.normal) s.normal_odd.assign(n, vec3(0.0f));
+  }
+  if (adaptive) s.converged.assign(n, 0);
   return s;
 }
 
-Film::Film(int width, int height, AovSelection aovs) : state_(FilmState::empty(width, height, aovs)) {}
+Film::Film(int width, int height, AovSelection aovs, bool adaptive)
+    : state_(FilmState::empty(width, height, aovs, adaptive)) {}
 
 Film::Film(FilmState state) : state_(std::move(state)) {}
 
-void Film::add(int x, int y, std::uint32_t samples, const glm::dvec3& radiance_sum,
-               const vec3& albedo_sum, const vec3& normal_sum, float depth_sum, std::uint32_t hits) {
+void Film::add(int x, int y, const PixelSums& p) {
   FilmState& s = state_;
-  const std::size_t i = static_cast<std::size_t>(y) * s.width + x;
-  s.samples[i] += samples;
-  s.radiance[i] += radiance_sum;
-  if (s.aovs.albedo) s.albedo[i] += albedo_sum;
-  if (s.aovs.normal) s.normal[i] += normal_sum;
+  const std::size_t i = index(x, y);
+  s.samples[i] += p.samples;
+  s.radiance[i] += p.radiance;
+  if (s.aovs.albedo) s.albedo[i] += p.albedo;
+  if (s.aovs.normal) s.normal[i] += p.normal;
   if (s.aovs.depth) {
-    s.depth[i] += depth_sum;
-    s.hits[i] += hits;
+    s.depth[i] += p.depth;
+    s.hits[i] += p.hits;
+  }
+  if (s.keeps_odd()) {
+    s.radiance_odd[i] += p.radiance_odd;
+    if (s.aovs.albedo) s.albedo_odd[i] += p.albedo_odd;
+    if (s.aovs.normal) s.normal_odd[i] += p.normal_odd;
   }
 }
 
@@ -44,28 +55,72 @@ std::uint32_t Film::min_samples() const {
   return v.empty() ? 0 : *std::min_element(v.begin(), v.end());
 }
 
+std::uint64_t samples_left(const FilmState& film, int spp) {
+  std::uint64_t left = 0;
+  for (std::size_t i = 0; i < film.pixel_count(); ++i) {
+    const bool stopped = film.adaptive() && film.converged[i];
+    if (!stopped && film.samples[i] < static_cast<std::uint32_t>(spp)) left += spp - film.samples[i];
+  }
+  return left;
+}
+
+std::uint64_t Film::converged_pixels() const {
+  return static_cast<std::uint64_t>(std::count(state_.converged.begin(), state_.converged.end(), 1));
+}
+
+namespace {
+
+// Means of n-vectors of sums: total / count, or (total - odd) / even count, or odd / odd count.
+enum class Half { all, even, odd };
+
+std::uint32_t count_of(std::uint32_t n, Half h) {
+  return h == Half::all ? n : h == Half::odd ? n / 2 : n - n / 2;
+}
+
+template <typename V>
+std::vector<float> means(const FilmState& s, const std::vector<V>& total, const std::vector<V>& odd, Half h) {
+  const std::size_t n = s.pixel_count();
+  std::vector<float> out(3 * n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint32_t count = count_of(s.samples[i], h);
+    if (count == 0) continue;  // no sample: black, as an unrendered pixel
+    const V sum = h == Half::all ? total[i] : h == Half::odd ? odd[i] : total[i] - odd[i];
+    const double inv = 1.0 / count;  // as the film always resolved: the same bits as before halves
+    for (int c = 0; c < 3; ++c) out[3 * i + c] = static_cast<float>(static_cast<double>(sum[c]) * inv);
+  }
+  return out;
+}
+
+void resolve_halves(const FilmState& s, FrameImage& img) {
+  img.rgb_even = means(s, s.radiance, s.radiance_odd, Half::even);
+  img.rgb_odd = means(s, s.radiance, s.radiance_odd, Half::odd);
+  if (s.aovs.albedo) {
+    img.albedo_even = means(s, s.albedo, s.albedo_odd, Half::even);
+    img.albedo_odd = means(s, s.albedo, s.albedo_odd, Half::odd);
+  }
+  if (s.aovs.normal) {
+    img.normal_even = means(s, s.normal, s.normal_odd, Half::even);
+    img.normal_odd = means(s, s.normal, s.normal_odd, Half::odd);
+  }
+}
+
+}  // namespace
+
 FrameImage Film::resolve() const {
   const FilmState& s = state_;
   FrameImage img;
   img.width = s.width;
   img.height = s.height;
   img.samples_per_pixel = static_cast<int>(min_samples());
-  const std::size_t n = s.radiance.size();
-  auto inv = [&](std::size_t i) { return s.samples[i] ? 1.0 / s.samples[i] : 0.0; };
-  img.rgb.resize(3 * n);
-  for (std::size_t i = 0; i < n; ++i)
-    for (int c = 0; c < 3; ++c) img.rgb[3 * i + c] = static_cast<float>(s.radiance[i][c] * inv(i));
-  auto average3 = [&](const std::vector<vec3>& sums, std::vector<float>& out) {
-    out.resize(3 * n);
-    for (std::size_t i = 0; i < n; ++i)
-      for (int c = 0; c < 3; ++c) out[3 * i + c] = static_cast<float>(sums[i][c] * inv(i));
-  };
-  if (s.aovs.albedo) average3(s.albedo, img.albedo);
-  if (s.aovs.normal) average3(s.normal, img.normal);
+  img.rgb = means(s, s.radiance, s.radiance, Half::all);
+  if (s.aovs.albedo) img.albedo = means(s, s.albedo, s.albedo, Half::all);
+  if (s.aovs.normal) img.normal = means(s, s.normal, s.normal, Half::all);
   if (s.aovs.depth) {
-    img.depth.resize(n);
-    for (std::size_t i = 0; i < n; ++i) img.depth[i] = s.hits[i] ? s.depth[i] / s.hits[i] : 0.0f;
+    img.depth.resize(s.pixel_count());
+    for (std::size_t i = 0; i < s.pixel_count(); ++i) img.depth[i] = s.hits[i] ? s.depth[i] / s.hits[i] : 0.0f;
   }
+  if (s.aovs.halves) resolve_halves(s, img);
+  if (s.aovs.halves || s.adaptive()) img.pixel_samples = s.samples;
   return img;
 }
 

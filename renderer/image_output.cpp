@@ -70,7 +70,22 @@ void add_channels(std::vector<ChannelData>& out, const std::vector<float>& src, 
   }
 }
 
-void write_exr(const std::string& path, const FrameImage& img, const ImageWriteParams& params) {
+// The halves AOV's layers, named as the denoiser reads them, and the per-pixel counts.
+void add_halves(std::vector<ChannelData>& channels, const FrameImage& img) {
+  auto add = [&](const std::vector<float>& v, const std::string& layer, const char* a, const char* b, const char* c) {
+    if (!v.empty()) add_channels(channels, v, 3, {layer + a, layer + b, layer + c});
+  };
+  add(img.rgb_even, "even.", "R", "G", "B");
+  add(img.rgb_odd, "odd.", "R", "G", "B");
+  add(img.albedo_even, "even.Albedo.", "R", "G", "B");
+  add(img.albedo_odd, "odd.Albedo.", "R", "G", "B");
+  add(img.normal_even, "even.N.", "X", "Y", "Z");
+  add(img.normal_odd, "odd.N.", "X", "Y", "Z");
+  if (!img.pixel_samples.empty())  // a float holds every count up to 2^24 (--spp's limit) exactly
+    add_channels(channels, std::vector<float>(img.pixel_samples.begin(), img.pixel_samples.end()), 1, {"spp"});
+}
+
+std::vector<ChannelData> exr_channels(const FrameImage& img) {
   std::vector<ChannelData> channels;
   add_channels(channels, img.rgb, 3, {"R", "G", "B"});
   channels.push_back({"A", std::vector<float>(static_cast<std::size_t>(img.width) * img.height, 1.0f), {}});
@@ -78,7 +93,12 @@ void write_exr(const std::string& path, const FrameImage& img, const ImageWriteP
   if (!img.normal.empty()) add_channels(channels, img.normal, 3, {"N.X", "N.Y", "N.Z"});
   if (!img.depth.empty()) add_channels(channels, img.depth, 1, {"Z"});
   if (!img.cost.empty()) add_channels(channels, img.cost, 1, {"cost.time"});
+  add_halves(channels, img);
+  return channels;
+}
 
+void write_exr(const std::string& path, const FrameImage& img, const ImageWriteParams& params) {
+  std::vector<ChannelData> channels = exr_channels(img);
   const FrameMetadata& m = params.metadata;
   Imf::Header header(img.width, img.height);
   header.compression() = Imf::ZIP_COMPRESSION;
@@ -94,6 +114,11 @@ void write_exr(const std::string& path, const FrameImage& img, const ImageWriteP
   header.insert("worldToNDC", Imf::M44fAttribute(to_imath(m.world_to_ndc)));
   header.insert("partial", Imf::IntAttribute(m.partial ? 1 : 0));
   if (m.target_spp > 0) header.insert("targetSamplesPerPixel", Imf::IntAttribute(m.target_spp));
+  if (m.noise_threshold > 0.0f) {
+    header.insert("noiseThreshold", Imf::FloatAttribute(m.noise_threshold));
+    header.insert("minSamplesPerPixel", Imf::IntAttribute(m.min_spp));
+    header.insert("convergedPixels", Imf::DoubleAttribute(static_cast<double>(m.converged_pixels)));
+  }
   header.insert("software", Imf::StringAttribute("tessera " + tessera_version()));
   header.insert("tesseraVersion", Imf::StringAttribute(tessera_version()));
   if (!m.scene_path.empty()) header.insert("scene", Imf::StringAttribute(m.scene_path));

@@ -37,6 +37,9 @@ struct FrameMetadata {
   std::string scene_path, camera_name;
   bool partial = false;  // stopped early: samplesPerPixel tells how far it got
   int target_spp = 0;  // --spp: what a finished render reaches (0: not written)
+  float noise_threshold = 0.0f;  // adaptive sampling (0: off, not written)
+  int min_spp = 0;  // adaptive sampling: the minimum in effect
+  std::uint64_t converged_pixels = 0;  // adaptive sampling: pixels stopped before target_spp
 };
 
 struct ImageWriteParams {

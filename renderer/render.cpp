@@ -19,8 +19,31 @@ struct TileCounters {
   PathCounters path;
 };
 
-// All samples [wave.begin, wave.end) of every pixel of one tile that has exactly
-// wave.begin samples: a resumed film's pixels that are ahead skip the wave.
+// The samples of `wave` a pixel still needs: from its own count to the wave's end. None
+// when it converged or a resumed film has it past the wave's end; its count is the wave's
+// first sample, except for a pixel an adaptive check revived (a neighbour turned noisy),
+// which catches up.
+std::uint32_t first_sample(const Film& film, int x, int y, SampleWave wave) {
+  return film.converged(x, y) ? static_cast<std::uint32_t>(wave.end) : film.samples(x, y);
+}
+
+// One sample into the pixel's sums; the odd-numbered ones into the odd half as well.
+void add_sample(PixelSums& p, int s, const glm::dvec3& radiance, const FirstHit& first, float depth) {
+  ++p.samples;
+  p.radiance += radiance;
+  if (s % 2 == 1) p.radiance_odd += radiance;
+  if (!first.hit) return;
+  p.albedo += first.albedo;
+  p.normal += first.normal;
+  p.depth += depth;
+  ++p.hits;
+  if (s % 2 == 1) {
+    p.albedo_odd += first.albedo;
+    p.normal_odd += first.normal;
+  }
+}
+
+// The samples [first_sample, wave.end) of every pixel of one tile.
 void render_tile(const RenderScene& scene, const RenderCamera& camera, const RenderSettings& settings,
                  const Tile& tile, SampleWave wave, Film& film, TileCounters& counters) {
   PathTracerParams params;
@@ -31,31 +54,25 @@ void render_tile(const RenderScene& scene, const RenderCamera& camera, const Ren
   const float inv_w = 1.0f / settings.width, inv_h = 1.0f / settings.height;
   for (int y = tile.y0; y < tile.y1; ++y) {
     for (int x = tile.x0; x < tile.x1; ++x) {
-      if (film.samples(x, y) != static_cast<std::uint32_t>(wave.begin)) continue;
-      glm::dvec3 sum(0.0);
-      vec3 albedo(0.0f), normal(0.0f);
-      float depth = 0.0f;
-      std::uint32_t hits = 0;
-      for (int s = wave.begin; s < wave.end; ++s) {
+      const int begin = static_cast<int>(first_sample(film, x, y, wave));
+      if (begin >= wave.end) continue;
+      PixelSums sums;
+      for (int s = begin; s < wave.end; ++s) {
         Sampler rng(settings.sampler, x, y, s, settings.seed);
         const vec2 jitter = rng.next2();
         const vec2 lens = rng.next2();
         const Ray ray = camera.generate_ray({(x + jitter.x) * inv_w, (y + jitter.y) * inv_h}, lens);
         if (!is_finite(ray.origin) || !is_finite(ray.direction)) {  // a degenerate camera: Embree
           ++counters.path.dropped;                                 // would abort on such a ray
+          ++sums.samples;
           continue;
         }
         FirstHit first;
-        sum += glm::dvec3(trace_path(scene, params, ray, rng, first, counters.path));
-        if (first.hit) {
-          albedo += first.albedo;
-          normal += first.normal;
-          depth += first.distance * glm::dot(ray.direction, forward);
-          ++hits;
-        }
+        const glm::dvec3 radiance(trace_path(scene, params, ray, rng, first, counters.path));
+        add_sample(sums, s, radiance, first, first.distance * glm::dot(ray.direction, forward));
       }
-      film.add(x, y, wave.end - wave.begin, sum, albedo, normal, depth, hits);
-      counters.samples += wave.end - wave.begin;
+      film.add(x, y, sums);
+      counters.samples += wave.end - begin;
     }
   }
 }
@@ -68,10 +85,21 @@ std::uint64_t total_samples(const FilmState& film) {
 
 // The film to start from: empty, or the resumed one, checked against the settings.
 Film initial_film(const RenderSettings& settings, FilmState* resume) {
-  if (!resume) return Film(settings.width, settings.height, settings.aovs);
+  if (!resume) return Film(settings.width, settings.height, settings.aovs, settings.adaptive.on());
   if (resume->width != settings.width || resume->height != settings.height)
     throw std::invalid_argument("resumed film has another size than the render");
+  if (resume->adaptive() != settings.adaptive.on() || resume->keeps_odd() != (settings.aovs.halves || settings.adaptive.on()))
+    throw std::invalid_argument("resumed film was made with another adaptive sampling or halves setting");
   return Film(std::move(*resume));
+}
+
+// Whether a resumed film already has `wave`: every pixel at or past its end, and with
+// adaptive sampling the convergence check after it made too (that check decides which
+// pixels the next wave renders; a run stopped after the wave's last tile did not make it).
+bool wave_already_done(const Film& film, SampleWave wave, int min_spp) {
+  if (film.state().adaptive() && wave.end >= min_spp)
+    return static_cast<std::uint32_t>(wave.end) <= film.state().checked_at;
+  return film.min_samples() >= static_cast<std::uint32_t>(wave.end);
 }
 
 double seconds_since(std::chrono::steady_clock::time_point t) {
@@ -80,17 +108,25 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
 
 }  // namespace
 
+std::vector<SampleWave> sample_waves_of(const RenderSettings& settings) {
+  if (!settings.adaptive.on()) return make_sample_waves(settings.spp);
+  return make_adaptive_waves(settings.spp, adaptive_min_spp(settings.adaptive, settings.spp));
+}
+
 RenderResult render_frame(const RenderScene& scene, const RenderCamera& camera,
                           const RenderSettings& settings, RenderMonitor* monitor, FilmState* resume) {
   RenderMonitor local;
   RenderMonitor& mon = monitor ? *monitor : local;
   Film film = initial_film(settings, resume);
   const std::uint64_t resumed = total_samples(film.state());
-  mon.samples_total = static_cast<std::uint64_t>(settings.width) * settings.height * settings.spp - resumed;
+  mon.samples_total = film.samples_left(settings.spp);
+  mon.pixels_converged = film.converged_pixels();
+  mon.pixels_total = film.state().pixel_count();
+  const int min_spp = settings.adaptive.on() ? adaptive_min_spp(settings.adaptive, settings.spp) : 0;
   const int threads = settings.threads > 0 ? settings.threads : default_thread_count();
   const WorkPlan plan = make_work_plan(
       {settings.width, settings.height, settings.tile_size, threads, settings.scheduler, settings.tile_order});
-  const std::vector<SampleWave> waves = make_sample_waves(settings.spp);
+  const std::vector<SampleWave> waves = sample_waves_of(settings);
   ProfileRecorder recorder(plan, static_cast<int>(waves.size()), settings.record_tiles);
   std::atomic<std::uint64_t> dropped{film.state().dropped}, samples{0};
   std::atomic<bool> out_of_time{false};
@@ -110,7 +146,7 @@ RenderResult render_frame(const RenderScene& scene, const RenderCamera& camera,
   };
   WaveRunner runner(plan);
   for (std::size_t w = 0; w < waves.size(); ++w) {
-    if (film.min_samples() >= static_cast<std::uint32_t>(waves[w].end)) continue;  // resumed past it
+    if (wave_already_done(film, waves[w], min_spp)) continue;  // resumed past it
     if (stopped()) break;
     recorder.begin_wave(waves_run++, waves[w].begin, waves[w].end);
     runner.run([&](std::size_t i, int thread) {
@@ -132,7 +168,14 @@ RenderResult render_frame(const RenderScene& scene, const RenderCamera& camera,
     });
     recorder.end_wave();
     first_wave = false;
-    const bool last = w + 1 == waves.size();
+    // Only after a whole wave (a stopped one skipped tiles), and not after the last.
+    if (settings.adaptive.on() && waves[w].end >= min_spp && w + 1 < waves.size() && !stopped()) {
+      mon.pixels_converged = check_convergence(
+          film.mutable_state(), {settings.adaptive.threshold, static_cast<std::uint32_t>(min_spp),
+                                 static_cast<std::uint32_t>(waves[w].end)});
+      mon.samples_total = mon.samples_done + film.samples_left(settings.spp);
+    }
+    const bool last = w + 1 == waves.size() || film.samples_left(settings.spp) == 0;
     if (settings.on_checkpoint && !last && !stopped() &&
         seconds_since(last_checkpoint) >= settings.checkpoint_interval) {
       film.set_dropped(dropped);
@@ -142,6 +185,7 @@ RenderResult render_frame(const RenderScene& scene, const RenderCamera& camera,
       settings.on_checkpoint(film, stats);
       last_checkpoint = std::chrono::steady_clock::now();
     }
+    if (last) break;
   }
   film.set_dropped(dropped);
   stats.seconds = seconds_since(start);
@@ -149,7 +193,8 @@ RenderResult render_frame(const RenderScene& scene, const RenderCamera& camera,
   stats.rays = mon.rays;
   stats.dropped_samples = dropped;
   stats.cancelled = mon.cancel;
-  stats.time_limited = out_of_time && film.min_samples() < static_cast<std::uint32_t>(settings.spp);
+  stats.time_limited = out_of_time && film.samples_left(settings.spp) > 0;
+  stats.converged_pixels = film.converged_pixels();
   RenderResult result;
   result.stats = stats;
   result.profile = recorder.finish();

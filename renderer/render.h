@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <functional>
 
+#include "renderer/adaptive_sampling.h"
 #include "renderer/camera.h"
 #include "renderer/film.h"
 #include "renderer/integrator/path_tracer.h"
@@ -38,6 +39,7 @@ struct RenderSettings {
   std::function<void(const Film&, const RenderStats&)> on_checkpoint;
   LightSampling light_sampling = LightSampling::Mis;
   float clamp = 0.0f;  // > 0: clamp each sample's luminance (biased, off by default)
+  AdaptiveSampling adaptive;  // off by default: every pixel gets spp
 };
 
 // Live counters a progress display may poll while rendering, and a way to stop early
@@ -45,7 +47,11 @@ struct RenderSettings {
 struct RenderMonitor {
   std::atomic<std::uint64_t> samples_done{0};  // camera samples finished
   std::atomic<std::uint64_t> rays{0};
-  std::uint64_t samples_total = 0;  // set by render_frame before work starts
+  // Camera samples this run takes in all: set before work starts, and with adaptive
+  // sampling lowered (or raised) after each convergence check.
+  std::atomic<std::uint64_t> samples_total{0};
+  std::atomic<std::uint64_t> pixels_converged{0};  // adaptive sampling: after the last check
+  std::atomic<std::uint64_t> pixels_total{0};  // set by render_frame before work starts
   std::atomic<bool> cancel{false};
 };
 
@@ -57,6 +63,7 @@ struct RenderStats {
   bool cancelled = false;  // the monitor's cancel flag stopped it
   bool time_limited = false;  // the time limit stopped it before spp
   std::uint64_t resumed_samples = 0;  // camera samples the film held before this run
+  std::uint64_t converged_pixels = 0;  // adaptive sampling: pixels stopped before spp
   double efficiency = 1.0, imbalance = 1.0;  // see LoadBalance
 };
 
@@ -73,6 +80,9 @@ struct RenderResult {
 RenderResult render_frame(const RenderScene& scene, const RenderCamera& camera,
                           const RenderSettings& settings, RenderMonitor* monitor = nullptr,
                           FilmState* resume = nullptr);
+
+// The sample waves render_frame runs: make_sample_waves, or make_adaptive_waves.
+std::vector<SampleWave> sample_waves_of(const RenderSettings& settings);
 
 // The thread count --threads 0 means.
 int default_thread_count();

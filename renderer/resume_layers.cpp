@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <cstring>
+#include <deque>
 
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfDoubleAttribute.h>
@@ -11,6 +12,7 @@
 #include <OpenEXR/ImfIntAttribute.h>
 #include <OpenEXR/ImfStringAttribute.h>
 
+#include "renderer/adaptive_sampling.h"
 #include "renderer/tile_scheduler.h"
 
 namespace tessera {
@@ -20,7 +22,10 @@ namespace {
 const char* const kRgb[3] = {"R", "G", "B"};
 const char* const kXyz[3] = {"X", "Y", "Z"};
 
-std::string sum_channel(int c, bool hi) { return std::string("tessera.sum.") + kRgb[c] + (hi ? ".hi" : ".lo"); }
+// `prefix` "tessera.sum." for the radiance sums, "tessera.odd." for the odd half's.
+std::string sum_channel(const std::string& prefix, int c, bool hi) {
+  return prefix + kRgb[c] + (hi ? ".hi" : ".lo");
+}
 
 std::uint64_t bits_of(double d) {
   std::uint64_t b;
@@ -39,40 +44,71 @@ double double_of(std::uint64_t b) {
 // One buffer per channel, planar, so every slice has the plain stride of its type.
 struct ResumeLayers::Buffers {
   int width = 0;
+  bool adaptive = false;
+  std::uint32_t checked_at = 0;
   std::vector<std::pair<std::string, std::vector<std::uint32_t>>> uints;
   std::vector<std::pair<std::string, std::vector<float>>> floats;
 };
+
+namespace {
+
+// Each double's 64 bits as two UINT channels.
+void add_double_sums(ResumeLayers::Buffers& b, const std::vector<glm::dvec3>& sums, const std::string& prefix);
+void add_float_sums(ResumeLayers::Buffers& b, const std::vector<vec3>& sums, const char* const names[3],
+                    const std::string& layer);
+
+}  // namespace
 
 ResumeLayers::ResumeLayers(const FilmState& film, std::string settings)
     : buffers_(std::make_unique<Buffers>()), settings_(std::move(settings)) {
   Buffers& b = *buffers_;
   b.width = film.width;
-  const std::size_t n = film.pixel_count();
+  b.checked_at = film.checked_at;
   b.uints.push_back({"tessera.samples", film.samples});
-  for (int c = 0; c < 3; ++c) {
-    std::vector<std::uint32_t> hi(n), lo(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      const std::uint64_t bits = bits_of(film.radiance[i][c]);
-      hi[i] = static_cast<std::uint32_t>(bits >> 32);
-      lo[i] = static_cast<std::uint32_t>(bits);
-    }
-    b.uints.push_back({sum_channel(c, true), std::move(hi)});
-    b.uints.push_back({sum_channel(c, false), std::move(lo)});
-  }
-  auto planar = [&](const std::vector<vec3>& v, const char* const names[3], const std::string& layer) {
-    for (int c = 0; c < 3; ++c) {
-      std::vector<float> out(n);
-      for (std::size_t i = 0; i < n; ++i) out[i] = v[i][c];
-      b.floats.push_back({layer + names[c], std::move(out)});
-    }
-  };
-  if (film.aovs.albedo) planar(film.albedo, kRgb, "tessera.albedo.");
-  if (film.aovs.normal) planar(film.normal, kXyz, "tessera.normal.");
+  add_double_sums(b, film.radiance, "tessera.sum.");
+  if (film.aovs.albedo) add_float_sums(b, film.albedo, kRgb, "tessera.albedo.");
+  if (film.aovs.normal) add_float_sums(b, film.normal, kXyz, "tessera.normal.");
   if (film.aovs.depth) {
     b.floats.push_back({"tessera.depth", film.depth});
     b.uints.push_back({"tessera.hits", film.hits});
   }
+  if (film.keeps_odd()) {
+    add_double_sums(b, film.radiance_odd, "tessera.odd.");
+    if (film.aovs.albedo) add_float_sums(b, film.albedo_odd, kRgb, "tessera.odd.albedo.");
+    if (film.aovs.normal) add_float_sums(b, film.normal_odd, kXyz, "tessera.odd.normal.");
+  }
+  if (film.adaptive()) {
+    b.adaptive = true;
+    b.uints.push_back({"tessera.converged", std::vector<std::uint32_t>(film.converged.begin(), film.converged.end())});
+  }
 }
+
+namespace {
+
+void add_double_sums(ResumeLayers::Buffers& b, const std::vector<glm::dvec3>& sums, const std::string& prefix) {
+  const std::size_t n = sums.size();
+  for (int c = 0; c < 3; ++c) {
+    std::vector<std::uint32_t> hi(n), lo(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::uint64_t bits = bits_of(sums[i][c]);
+      hi[i] = static_cast<std::uint32_t>(bits >> 32);
+      lo[i] = static_cast<std::uint32_t>(bits);
+    }
+    b.uints.push_back({sum_channel(prefix, c, true), std::move(hi)});
+    b.uints.push_back({sum_channel(prefix, c, false), std::move(lo)});
+  }
+}
+
+void add_float_sums(ResumeLayers::Buffers& b, const std::vector<vec3>& sums, const char* const names[3],
+                    const std::string& layer) {
+  for (int c = 0; c < 3; ++c) {
+    std::vector<float> out(sums.size());
+    for (std::size_t i = 0; i < sums.size(); ++i) out[i] = sums[i][c];
+    b.floats.push_back({layer + names[c], std::move(out)});
+  }
+}
+
+}  // namespace
 
 ResumeLayers::~ResumeLayers() = default;
 
@@ -90,6 +126,7 @@ void ResumeLayers::insert_into(Imf::Header& header, Imf::FrameBuffer& fb) {
   }
   header.insert("tesseraResume", Imf::StringAttribute(settings_));
   header.insert("tesseraFingerprint", Imf::StringAttribute(fnv1a_hex(settings_)));
+  if (b.adaptive) header.insert("tesseraCheckedAt", Imf::IntAttribute(static_cast<int>(b.checked_at)));
 }
 
 std::string fnv1a_hex(const std::string& bytes) {
@@ -105,61 +142,99 @@ std::string fnv1a_hex(const std::string& bytes) {
 
 namespace {
 
-// The layers of `film` (sized, AOVs chosen) that `header` must have, read into it.
-void read_layers(Imf::InputFile& file, FilmState& film, const std::string& path) {
-  const Imf::ChannelList& channels = file.header().channels();
-  const std::size_t n = film.pixel_count();
-  std::vector<std::vector<std::uint32_t>> sum_bits(6, std::vector<std::uint32_t>(n));
-  std::vector<std::vector<float>> planes;
-  Imf::FrameBuffer fb;
-  auto slice_u = [&](const std::string& name, std::uint32_t* data) {
-    const Imf::Channel* ch = channels.findChannel(name);
-    if (!ch || ch->type != Imf::UINT) throw ResumeError(path + ": resume layer " + name + " is missing or not UINT");
-    fb.insert(name, Imf::Slice(Imf::UINT, reinterpret_cast<char*>(data), sizeof(std::uint32_t),
-                               sizeof(std::uint32_t) * film.width));
-  };
-  auto slice_f = [&](const std::string& name, float* data) {
-    const Imf::Channel* ch = channels.findChannel(name);
-    if (!ch || ch->type != Imf::FLOAT) throw ResumeError(path + ": resume layer " + name + " is missing or not FLOAT");
-    fb.insert(name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(data), sizeof(float), sizeof(float) * film.width));
-  };
-  slice_u("tessera.samples", film.samples.data());
-  for (int c = 0; c < 3; ++c) {
-    slice_u(sum_channel(c, true), sum_bits[2 * c].data());
-    slice_u(sum_channel(c, false), sum_bits[2 * c + 1].data());
+// Slices of the channels `film` (sized, AOVs chosen) must have, each checked for its type;
+// the doubles and the vec3 sums are read into planes and put together afterwards.
+class LayerReader {
+ public:
+  LayerReader(const Imf::ChannelList& channels, const FilmState& film, const std::string& path)
+      : channels_(channels), width_(film.width), n_(film.pixel_count()), path_(path) {}
+
+  void uints(const std::string& name, std::uint32_t* data) {
+    check(name, Imf::UINT, "UINT");
+    fb_.insert(name, Imf::Slice(Imf::UINT, reinterpret_cast<char*>(data), sizeof(std::uint32_t),
+                                sizeof(std::uint32_t) * width_));
   }
-  auto planar3 = [&](const char* const names[3], const std::string& layer) {
-    for (int c = 0; c < 3; ++c) {
-      planes.emplace_back(n);
-      slice_f(layer + names[c], planes.back().data());
-    }
-  };
-  planes.reserve(7);  // slices point into them: no reallocation
-  if (film.aovs.albedo) planar3(kRgb, "tessera.albedo.");
-  if (film.aovs.normal) planar3(kXyz, "tessera.normal.");
-  if (film.aovs.depth) {
-    slice_f("tessera.depth", film.depth.data());
-    slice_u("tessera.hits", film.hits.data());
+  void floats(const std::string& name, float* data) {
+    check(name, Imf::FLOAT, "FLOAT");
+    fb_.insert(name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(data), sizeof(float), sizeof(float) * width_));
   }
-  file.setFrameBuffer(fb);
-  file.readPixels(0, film.height - 1);
-  for (std::size_t i = 0; i < n; ++i)
+  void doubles(const std::string& prefix, std::vector<glm::dvec3>* out) {
     for (int c = 0; c < 3; ++c)
-      film.radiance[i][c] = double_of(std::uint64_t(sum_bits[2 * c][i]) << 32 | sum_bits[2 * c + 1][i]);
-  std::size_t p = 0;
-  auto unplanar3 = [&](std::vector<vec3>& out) {
-    for (int c = 0; c < 3; ++c, ++p)
-      for (std::size_t i = 0; i < n; ++i) out[i][c] = planes[p][i];
-  };
-  if (film.aovs.albedo) unplanar3(film.albedo);
-  if (film.aovs.normal) unplanar3(film.normal);
+      for (bool hi : {true, false}) uints(sum_channel(prefix, c, hi), plane_u());
+    doubles_.push_back(out);
+  }
+  void vec3s(const char* const names[3], const std::string& layer, std::vector<vec3>* out) {
+    for (int c = 0; c < 3; ++c) floats(layer + names[c], plane_f());
+    vec3s_.push_back(out);
+  }
+  // Reads the pixels and assembles the doubles and vec3 sums in the order they were asked for.
+  void read(Imf::InputFile& file, int height) {
+    file.setFrameBuffer(fb_);
+    file.readPixels(0, height - 1);
+    for (std::size_t k = 0; k < doubles_.size(); ++k)
+      for (std::size_t i = 0; i < n_; ++i)
+        for (int c = 0; c < 3; ++c) {
+          const auto& hi = u_planes_[6 * k + 2 * c];
+          const auto& lo = u_planes_[6 * k + 2 * c + 1];
+          (*doubles_[k])[i][c] = double_of(std::uint64_t(hi[i]) << 32 | lo[i]);
+        }
+    for (std::size_t k = 0; k < vec3s_.size(); ++k)
+      for (int c = 0; c < 3; ++c)
+        for (std::size_t i = 0; i < n_; ++i) (*vec3s_[k])[i][c] = f_planes_[3 * k + c][i];
+  }
+
+ private:
+  void check(const std::string& name, Imf::PixelType type, const char* type_name) const {
+    const Imf::Channel* ch = channels_.findChannel(name);
+    if (!ch || ch->type != type)
+      throw ResumeError(path_ + ": resume layer " + name + " is missing or not " + type_name);
+  }
+  std::uint32_t* plane_u() { return u_planes_.emplace_back(n_).data(); }  // a deque: no moves
+  float* plane_f() { return f_planes_.emplace_back(n_).data(); }
+
+  const Imf::ChannelList& channels_;
+  int width_;
+  std::size_t n_;
+  std::string path_;
+  Imf::FrameBuffer fb_;
+  std::deque<std::vector<std::uint32_t>> u_planes_;
+  std::deque<std::vector<float>> f_planes_;
+  std::vector<std::vector<glm::dvec3>*> doubles_;
+  std::vector<std::vector<vec3>*> vec3s_;
+};
+
+void read_layers(Imf::InputFile& file, FilmState& film, const std::string& path) {
+  LayerReader r(file.header().channels(), film, path);
+  r.uints("tessera.samples", film.samples.data());
+  r.doubles("tessera.sum.", &film.radiance);
+  if (film.aovs.albedo) r.vec3s(kRgb, "tessera.albedo.", &film.albedo);
+  if (film.aovs.normal) r.vec3s(kXyz, "tessera.normal.", &film.normal);
+  if (film.aovs.depth) {
+    r.floats("tessera.depth", film.depth.data());
+    r.uints("tessera.hits", film.hits.data());
+  }
+  if (film.keeps_odd()) {
+    r.doubles("tessera.odd.", &film.radiance_odd);
+    if (film.aovs.albedo) r.vec3s(kRgb, "tessera.odd.albedo.", &film.albedo_odd);
+    if (film.aovs.normal) r.vec3s(kXyz, "tessera.odd.normal.", &film.normal_odd);
+  }
+  std::vector<std::uint32_t> converged(film.adaptive() ? film.pixel_count() : 0);
+  if (film.adaptive()) r.uints("tessera.converged", converged.data());
+  r.read(file, film.height);
+  for (std::size_t i = 0; i < converged.size(); ++i) {
+    if (converged[i] > 1) throw ResumeError(path + ": tessera.converged holds " + std::to_string(converged[i]) + ": the file is damaged");
+    film.converged[i] = static_cast<std::uint8_t>(converged[i]);
+  }
 }
 
 // Every count must be where a wave ends: what a render stopped between tiles leaves.
-void check_counts(const FilmState& film, int spp, const std::string& path) {
+void check_counts(const FilmState& film, const ResumeFilmSpec& spec, const std::string& path) {
+  const int spp = spec.spp;
   std::vector<bool> wave_end(static_cast<std::size_t>(spp) + 1, false);
   wave_end[0] = true;
-  for (const SampleWave& w : make_sample_waves(spp)) wave_end[w.end] = true;
+  const std::vector<SampleWave> waves =
+      spec.adaptive_min_spp > 0 ? make_adaptive_waves(spp, spec.adaptive_min_spp) : make_sample_waves(spp);
+  for (const SampleWave& w : waves) wave_end[w.end] = true;
   for (std::size_t i = 0; i < film.pixel_count(); ++i) {
     const std::uint32_t s = film.samples[i];
     if (s > static_cast<std::uint32_t>(spp) || !wave_end[s])
@@ -194,18 +269,25 @@ std::string read_resume_settings(const std::string& path) {
   });
 }
 
-FilmState read_resume_film(const std::string& path, int width, int height, AovSelection aovs, int spp) {
+FilmState read_resume_film(const std::string& path, const ResumeFilmSpec& spec) {
   return rethrow_as_resume_error(path, [&] {
     Imf::InputFile file(path.c_str());
     const Imf::Header& h = file.header();
     const Imath::Box2i dw = h.dataWindow();
-    if (dw.min.x != 0 || dw.min.y != 0 || dw.max.x + 1 != width || dw.max.y + 1 != height)
-      throw ResumeError(path + ": its pixels are not a " + std::to_string(width) + "x" + std::to_string(height) + " image");
-    FilmState film = FilmState::empty(width, height, aovs);
+    if (dw.min.x != 0 || dw.min.y != 0 || dw.max.x + 1 != spec.width || dw.max.y + 1 != spec.height)
+      throw ResumeError(path + ": its pixels are not a " + std::to_string(spec.width) + "x" +
+                        std::to_string(spec.height) + " image");
+    FilmState film = FilmState::empty(spec.width, spec.height, spec.aovs, spec.adaptive_min_spp > 0);
     read_layers(file, film, path);
-    check_counts(film, spp, path);
+    check_counts(film, spec, path);
     if (const auto* dropped = h.findTypedAttribute<Imf::DoubleAttribute>("droppedSamples"))
       film.dropped = static_cast<std::uint64_t>(dropped->value());
+    if (film.adaptive()) {
+      const auto* checked = h.findTypedAttribute<Imf::IntAttribute>("tesseraCheckedAt");
+      if (!checked || checked->value() < 0 || checked->value() > spec.spp)
+        throw ResumeError(path + ": tesseraCheckedAt is missing or out of range: the file is damaged");
+      film.checked_at = static_cast<std::uint32_t>(checked->value());
+    }
     return film;
   });
 }

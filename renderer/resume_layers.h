@@ -8,8 +8,12 @@
 //   tessera.sum.{R,G,B}.{hi,lo} (UINT)        radiance sums, the bits of a double
 //   tessera.albedo.{R,G,B}, tessera.normal.{X,Y,Z}, tessera.depth (FLOAT), tessera.hits (UINT)
 //                                             first-hit sums, when those AOVs are on
+//   tessera.odd.{R,G,B}.{hi,lo} (UINT)        sums of the odd-numbered samples, with the
+//   tessera.odd.albedo.{R,G,B}, tessera.odd.normal.{X,Y,Z} (FLOAT)   halves AOV or adaptive sampling
+//   tessera.converged (UINT)                  adaptive sampling: 1 where the pixel stopped
 // and in the header: tesseraResume (the settings, "key=value" lines), tesseraFingerprint (a
-// hash of those lines) and droppedSamples.
+// hash of those lines), droppedSamples and, with adaptive sampling, tesseraCheckedAt (the
+// sample count of the wave after which the convergence flags were decided).
 #pragma once
 
 #include <cstdint>
@@ -36,9 +40,9 @@ class ResumeLayers {
   ResumeLayers(const FilmState& film, std::string settings);
   ~ResumeLayers();
   void insert_into(Imf::Header& header, Imf::FrameBuffer& frame_buffer);
+  struct Buffers;  // the converted channels, defined in the .cpp
 
  private:
-  struct Buffers;
   std::unique_ptr<Buffers> buffers_;
   std::string settings_;
 };
@@ -50,9 +54,18 @@ std::string fnv1a_hex(const std::string& bytes);
 // the file when it has none.
 std::string read_resume_settings(const std::string& path);
 
-// The film `path` carries, which must be width x height with these AOVs, every pixel's
-// count the end of a sample wave of `spp` (as a stopped render leaves them). Read once the
-// settings matched. Throws ResumeError naming the file.
-FilmState read_resume_film(const std::string& path, int width, int height, AovSelection aovs, int spp);
+// What the film in a resumable file must be: its size and AOVs, and the render whose sample
+// waves its counts must end on.
+struct ResumeFilmSpec {
+  int width = 0, height = 0;
+  AovSelection aovs;
+  int spp = 0;
+  int adaptive_min_spp = 0;  // 0: not an adaptive render
+};
+
+// The film `path` carries, which must match `spec`, every pixel's count the end of one of
+// its sample waves (as a stopped render leaves them). Read once the settings matched.
+// Throws ResumeError naming the file.
+FilmState read_resume_film(const std::string& path, const ResumeFilmSpec& spec);
 
 }  // namespace tessera

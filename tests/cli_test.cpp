@@ -119,7 +119,9 @@ INSTANTIATE_TEST_SUITE_P(Values, CliBadOption,
                                          BadOption{"--spp abc", "--spp", "abc"},
                                          BadOption{"--width -5", "--width", "-5"},
                                          BadOption{"--tile-size 0", "--tile-size", "0"},
-                                         BadOption{"--aov bogus", "--aov", "bogus"}),
+                                         BadOption{"--aov bogus", "--aov", "bogus"},
+                                         BadOption{"--noise-threshold -1", "--noise-threshold", "-1"},
+                                         BadOption{"--noise-threshold 0.01 --min-spp 2", "--min-spp", "2"}),
                          [](const testing::TestParamInfo<BadOption>& info) {
                            std::string name = info.param.args;
                            for (char& c : name)

@@ -5,12 +5,15 @@
 #include <gtest/gtest.h>
 
 #include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFloatAttribute.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfIntAttribute.h>
 #include <OpenEXR/ImfStringAttribute.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -50,6 +53,19 @@ std::vector<float> rgb_of(const std::string& path) {
 int int_attribute(const std::string& path, const char* name) {
   Imf::InputFile file(path.c_str());
   return file.header().typedAttribute<Imf::IntAttribute>(name).value();
+}
+
+// One FLOAT channel, e.g. the per-pixel counts `spp`.
+std::vector<float> channel_of(const std::string& path, const std::string& name) {
+  Imf::InputFile file(path.c_str());
+  const Imath::Box2i dw = file.header().dataWindow();
+  const int w = dw.max.x + 1, h = dw.max.y + 1;
+  std::vector<float> px(static_cast<std::size_t>(w) * h, -1.0f);
+  Imf::FrameBuffer fb;
+  fb.insert(name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(px.data()), sizeof(float), sizeof(float) * w));
+  file.setFrameBuffer(fb);
+  file.readPixels(0, h - 1);
+  return px;
 }
 
 bool has_resume_data(const std::string& path) {
@@ -174,6 +190,66 @@ TEST(ResumeCli, ACheckpointSurvivesAKillAndResumes) {
   const auto resumed = render(cornell(), "--resume " + quote(out) + long_render + " --time-limit 0.5");
   EXPECT_EQ(resumed.exit_code, 0) << resumed.err;
   EXPECT_GT(int_attribute(out, "samplesPerPixel"), spp);
+}
+
+// Adaptive sampling stopped by its time limit (after the first wave), resumed with other
+// threads and tiles: the same pixels and per-pixel counts as one run straight through.
+// (Stops after later waves, with convergence flags stored: AdaptiveResume.*.)
+const std::string kAdaptive = kSettings + " --noise-threshold 0.05 --min-spp 8 --aov halves";
+
+TEST(ResumeCli, AdaptiveTimeLimitedThenResumedIsTheSameBitForBit) {
+  const std::string dir = test::make_temp_dir("resume-cli-adaptive");
+  auto r = render(cornell(), "-o " + quote(dir + "/whole.exr") + kAdaptive);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = render(cornell(), "-o " + quote(dir + "/part.exr") + kAdaptive + " --time-limit 0.001");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(int_attribute(dir + "/part.exr", "partial"), 1);
+  r = render(cornell(), "--resume " + quote(dir + "/part.exr") + " -o " + quote(dir + "/resumed.exr") + kAdaptive +
+                            " --threads 1 --tile-size 7");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(int_attribute(dir + "/resumed.exr", "partial"), 0);
+  for (const char* layer : {"R", "G", "B", "even.R", "odd.G", "spp"}) {
+    const std::vector<float> whole = channel_of(dir + "/whole.exr", layer), resumed = channel_of(dir + "/resumed.exr", layer);
+    EXPECT_EQ(std::memcmp(whole.data(), resumed.data(), whole.size() * sizeof(float)), 0) << layer;
+  }
+}
+
+// The EXR of an adaptive render: each pixel's count in `spp` (at least the minimum, at most
+// --spp, the fewest is samplesPerPixel), the threshold and minimum in the header; the
+// summary says how many pixels converged.
+TEST(AdaptiveCli, TheExrRecordsCountsAndThresholdAndTheSummaryTheConvergedShare) {
+  const std::string dir = test::make_temp_dir("adaptive-cli");
+  const std::string out = dir + "/frame.exr";
+  const auto r = render(cornell(), "-o " + quote(out) + " --width 40 --spp 64 --seed 7 --noise-threshold 0.05 --min-spp 8");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  Imf::InputFile file(out.c_str());
+  EXPECT_FLOAT_EQ(file.header().typedAttribute<Imf::FloatAttribute>("noiseThreshold").value(), 0.05f);
+  EXPECT_EQ(int_attribute(out, "minSamplesPerPixel"), 8);
+  EXPECT_EQ(int_attribute(out, "partial"), 0);
+  EXPECT_EQ(file.header().channels().findChannel("even.R"), nullptr);  // halves only when asked for
+  const std::vector<float> spp = channel_of(out, "spp");
+  const float fewest = *std::min_element(spp.begin(), spp.end());
+  EXPECT_EQ(fewest, static_cast<float>(int_attribute(out, "samplesPerPixel")));
+  EXPECT_EQ(fewest, 8.0f);  // the walls are smooth enough to stop at the minimum
+  EXPECT_EQ(*std::max_element(spp.begin(), spp.end()), 64.0f);  // the noisiest need everything
+  const long converged = std::count_if(spp.begin(), spp.end(), [](float n) { return n < 64.0f; });
+  const std::size_t at = r.err.find("% of pixels converged");
+  ASSERT_NE(at, std::string::npos) << r.err;
+  const double printed = std::stod(r.err.substr(r.err.rfind(' ', at) + 1));
+  EXPECT_NEAR(printed, 100.0 * converged / spp.size(), 0.5) << r.err;
+}
+
+TEST(ResumeCli, AnotherNoiseThresholdOrNoneIsRefused) {
+  const std::string dir = test::make_temp_dir("resume-cli-adaptive-mismatch");
+  const std::string part = dir + "/part.exr";
+  ASSERT_EQ(render(cornell(), "-o " + quote(part) + kAdaptive + " --time-limit 0.001").exit_code, 0);
+  auto r = render(cornell(), "--resume " + quote(part) + " -o " + quote(dir + "/out.exr") + kSettings +
+                                 " --noise-threshold 0.1 --min-spp 8 --aov halves");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("noise-threshold differs: the file has 0.05, this render 0.1"), std::string::npos) << r.err;
+  r = render(cornell(), "--resume " + quote(part) + " -o " + quote(dir + "/out.exr") + kSettings + " --aov halves");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("noise-threshold differs: the file has 0.05, this render (nothing)"), std::string::npos) << r.err;
 }
 
 }  // namespace

@@ -127,8 +127,8 @@ TEST(Resume, TheExrCarriesTheFilmLosslessly) {
   params.resume_settings = "format=1\nspp=20\n";
   write_image(path, Film(film).resolve(), params);
   EXPECT_EQ(read_resume_settings(path), params.resume_settings);
-  expect_same_film(read_resume_film(path, 37, 23, film.aovs, 20), film);
-  EXPECT_THROW(read_resume_film(path, 36, 23, film.aovs, 20), ResumeError);  // another size
+  expect_same_film(read_resume_film(path, {37, 23, film.aovs, 20}), film);
+  EXPECT_THROW(read_resume_film(path, {36, 23, film.aovs, 20}), ResumeError);  // another size
 }
 
 TEST(Resume, CountsNoRenderStopsAtAreRefused) {
@@ -141,7 +141,7 @@ TEST(Resume, CountsNoRenderStopsAtAreRefused) {
   params.resume_settings = "format=1\n";
   write_image(path, Film(film).resolve(), params);
   try {
-    read_resume_film(path, 4, 4, {}, 20);
+    read_resume_film(path, {4, 4, {}, 20});
     ADD_FAILURE() << "damaged counts were accepted";
   } catch (const ResumeError& e) {
     EXPECT_EQ(std::string(e.what()),
