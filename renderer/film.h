@@ -4,6 +4,8 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "renderer/math.h"
@@ -23,6 +25,10 @@ struct FrameImage {
   std::vector<float> albedo, normal;  // 3 per pixel, when requested
   std::vector<float> depth;  // 1 per pixel, when requested; 0 where no sample hit
   std::vector<float> cost;  // 1 per pixel, when requested: CPU seconds spent on the pixel's tile
+  std::vector<float> noisy_rgb;  // 3 per pixel, in a denoised frame: the beauty before denoising
+  // Further channels written as they are, 1 float per pixel each (a denoised frame carries
+  // its input's half buffers and sample counts over).
+  std::vector<std::pair<std::string, std::vector<float>>> extra_channels;
 };
 
 // Everything the film has summed, per pixel, row-major. The AOV vectors are empty unless
