@@ -35,7 +35,7 @@ struct DenoiseInput {
 struct DenoiseParams {
   int threads = 0;  // 0: all cores (TBB's default concurrency)
   int radius = 7;  // regression window: (2 radius + 1)^2 pixels
-  int stride = 4;  // window centres every `stride` pixels (collaborative: each solve
+  int stride = 5;  // window centres every `stride` pixels (collaborative: each solve
                    // reconstructs its whole window); must be at most radius + 1
   float bandwidths[2] = {0.5f, 1.0f};  // the candidate NL-means bandwidths k
   int feature_radius = 3;  // feature prefilter window: (2 r + 1)^2 pixels; 0: no prefilter

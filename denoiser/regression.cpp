@@ -69,25 +69,37 @@ int fill_design(const Context& ctx, int cx, int cy, Scratch& s) {
 }
 
 // NL-means weights (Rousselle et al. 2012) of every window pixel, from the guide of the other
-// half: d = mean over channels of ((u_c - u_q)^2 - (V_c + min(V_c, V_q))) / (eps + k^2 (V_c + V_q)).
-void fill_weights(const Context& ctx, std::size_t c, int n, Scratch& s) {
+// half: d = mean over channels of ((u_c - u_q)^2 - (V_c + min(V_c, V_q))) / (k^2 (V_c + V_q + eps)).
+// Row by row along contiguous memory, branch-free: the compiler vectorises it.
+void fill_weights(const Context& ctx, int cx, int cy, Scratch& s) {
+  const Planes& f = ctx.features;
+  const int w = f.width, h = f.height, r = ctx.p.radius;
+  const std::size_t plane = f.pixels(), c = static_cast<std::size_t>(cy) * w + cx;
+  const int x0 = std::max(0, cx - r), x1 = std::min(w - 1, cx + r), len = x1 - x0 + 1;
+  const float inv_k2[2] = {1.0f / (3.0f * ctx.k2[0]), 1.0f / (3.0f * ctx.k2[1])};  // with the channel mean
   for (int half = 0; half < 2; ++half) {
     const Half& guide = ctx.halves.h[1 - half];
-    const std::vector<float>& valid = ctx.halves.h[half].valid;
+    const float* g = guide.guide.data.data();
+    const float* v = guide.guide_variance.data.data();
     float gc[3], vc[3];
-    for (int k = 0; k < 3; ++k) gc[k] = guide.guide.at(k, c), vc[k] = guide.guide_variance.at(k, c);
-    for (int i = 0; i < n; ++i) {
-      const std::size_t q = s.index[i];
-      float d[2] = {0.0f, 0.0f};
-      for (int k = 0; k < 3; ++k) {
-        const float diff = gc[k] - guide.guide.at(k, q), vq = guide.guide_variance.at(k, q);
-        const float num = diff * diff - (vc[k] + std::min(vc[k], vq));
-        for (int cand = 0; cand < 2; ++cand) d[cand] += num / (kEpsilon + ctx.k2[cand] * (vc[k] + vq));
-      }
-      for (int cand = 0; cand < 2; ++cand) {
-        const float wt = exp_neg(-std::max(0.0f, d[cand] / 3.0f));
-        s.recon_w(i, 2 * half + cand) = wt;
-        s.data_w(i, 2 * half + cand) = wt * valid[q];
+    for (int k = 0; k < 3; ++k) gc[k] = g[k * plane + c], vc[k] = v[k * plane + c];
+    float* recon[2] = {s.recon_w.col(2 * half).data(), s.recon_w.col(2 * half + 1).data()};
+    float* data[2] = {s.data_w.col(2 * half).data(), s.data_w.col(2 * half + 1).data()};
+    int i = 0;
+    for (int y = std::max(0, cy - r); y <= std::min(h - 1, cy + r); ++y, i += len) {
+      const std::size_t row = static_cast<std::size_t>(y) * w + x0;
+      const float* valid = ctx.halves.h[half].valid.data() + row;
+      for (int x = 0; x < len; ++x) {
+        float d = 0.0f;
+        for (int k = 0; k < 3; ++k) {
+          const float diff = gc[k] - g[k * plane + row + x], vq = v[k * plane + row + x];
+          d += (diff * diff - (vc[k] + std::min(vc[k], vq))) / (vc[k] + vq + kEpsilon);
+        }
+        for (int cand = 0; cand < 2; ++cand) {
+          const float wt = exp_neg(-std::max(0.0f, d * inv_k2[cand]));
+          recon[cand][i + x] = wt;
+          data[cand][i + x] = wt * valid[x];
+        }
       }
     }
   }
@@ -130,7 +142,7 @@ void accumulate(const Context& ctx, int n, Scratch& s) {
 
 void process_centre(const Context& ctx, int cx, int cy, Scratch& s) {
   const int n = fill_design(ctx, cx, cy, s);
-  fill_weights(ctx, static_cast<std::size_t>(cy) * ctx.features.width + cx, n, s);
+  fill_weights(ctx, cx, cy, s);
   solve(ctx, n, s);
   accumulate(ctx, n, s);
 }
