@@ -24,7 +24,7 @@ void add_denoise_command(CLI::App& app, DenoiseOptions& o) {
       "even.N.*, odd.N.*, spp when present).");
   cmd->add_option("input", o.input, "The rendered EXR")->required();
   cmd->add_option("-o,--output", o.output,
-                  "Output EXR: R,G,B,A denoised, noisy.R/G/B the input's beauty, every other channel and "
+                  "Output EXR: R,G,B,A denoised, noisy.R/G/B the input's beauty, every other channel (not the resume layers) and "
                   "the header carried over")
       ->required();
   cmd->add_option("--preview", o.preview, "Also write the denoised frame as a display-referred image (sRGB), e.g. out.png");
