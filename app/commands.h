@@ -66,14 +66,24 @@ struct ScalingOptions {
   bool quiet = false;
 };
 
+struct DenoiseOptions {
+  std::string input;  // an EXR with the half buffers and the albedo and normal AOVs
+  std::string output;  // .exr
+  std::string preview;  // optional PNG (or any display format)
+  int threads = 0;  // 0 = all cores
+  bool quiet = false;
+};
+
 void add_render_command(CLI::App& app, RenderOptions& options);
 void add_info_command(CLI::App& app, InfoOptions& options);
 void add_bench_command(CLI::App& app, BenchOptions& options);
 void add_scaling_command(CLI::App& app, ScalingOptions& options);
+void add_denoise_command(CLI::App& app, DenoiseOptions& options);
 
 int run_render(const RenderOptions& options);
 int run_info(const InfoOptions& options);
 int run_bench(const BenchOptions& options);
 int run_scaling(const ScalingOptions& options);
+int run_denoise(const DenoiseOptions& options);
 
 }  // namespace tessera

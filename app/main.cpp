@@ -8,6 +8,7 @@
 #include "app/commands.h"
 #include "app/exit_codes.h"
 #include "app/interrupt.h"
+#include "renderer/image_input.h"
 #include "renderer/image_output.h"
 #include "renderer/resume_layers.h"
 #include "scene_io/load_error.h"
@@ -27,10 +28,12 @@ int main(int argc, char** argv) {
   InfoOptions info;
   BenchOptions bench;
   ScalingOptions scaling;
+  DenoiseOptions denoise;
   add_render_command(app, render);
   add_info_command(app, info);
   add_bench_command(app, bench);
   add_scaling_command(app, scaling);
+  add_denoise_command(app, denoise);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -47,6 +50,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("render")) return run_render(render);
     if (app.got_subcommand("info")) return run_info(info);
     if (app.got_subcommand("scaling")) return run_scaling(scaling);
+    if (app.got_subcommand("denoise")) return run_denoise(denoise);
     return run_bench(bench);
   } catch (const SceneLoadError& e) {
     fmt::print(stderr, "tessera: error: {}\n", e.what());
@@ -55,6 +59,9 @@ int main(int argc, char** argv) {
     fmt::print(stderr, "tessera: error: {}\n", e.what());
     return kExitBadInput;
   } catch (const ResumeError& e) {  // --resume: not resumable, damaged
+    fmt::print(stderr, "tessera: error: {}\n", e.what());
+    return kExitBadInput;
+  } catch (const ImageInputError& e) {  // denoise: an unreadable EXR
     fmt::print(stderr, "tessera: error: {}\n", e.what());
     return kExitBadInput;
   } catch (const UsageError& e) {

@@ -4,6 +4,8 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "renderer/math.h"
@@ -28,6 +30,10 @@ struct FrameImage {
   // samples, 3 per pixel; albedo and normal ones only when those AOVs are on too.
   std::vector<float> rgb_even, rgb_odd, albedo_even, albedo_odd, normal_even, normal_odd;
   std::vector<std::uint32_t> pixel_samples;  // with halves or adaptive sampling: each pixel's count
+  std::vector<float> noisy_rgb;  // 3 per pixel, in a denoised frame: the beauty before denoising
+  // Further channels written as they are, 1 float per pixel each (a denoised frame carries
+  // its input's half buffers and sample counts over).
+  std::vector<std::pair<std::string, std::vector<float>>> extra_channels;
 };
 
 // Everything the film has summed, per pixel, row-major. The AOV vectors are empty unless

@@ -5,11 +5,13 @@
 #include <cstdio>
 #include <filesystem>
 #include <optional>
+#include <set>
 
 #include <Imath/half.h>
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfIntAttribute.h>
 #include <OpenEXR/ImfFloatAttribute.h>
 #include <OpenEXR/ImfDoubleAttribute.h>
@@ -85,6 +87,17 @@ void add_halves(std::vector<ChannelData>& channels, const FrameImage& img) {
     add_channels(channels, std::vector<float>(img.pixel_samples.begin(), img.pixel_samples.end()), 1, {"spp"});
 }
 
+// Every attribute of `source`'s header but its layout, which is the new file's own.
+void copy_attributes(const std::string& source, Imf::Header& header) {
+  static const std::set<std::string> kLayout = {"channels", "compression", "dataWindow", "displayWindow", "lineOrder",
+                                                "pixelAspectRatio", "screenWindowCenter", "screenWindowWidth",
+                                                "tiles", "type", "name", "version", "chunkCount",
+                                                "tesseraResume", "tesseraFingerprint"};  // no resume layers here
+  Imf::InputFile in(source.c_str());
+  for (auto it = in.header().begin(); it != in.header().end(); ++it)
+    if (!kLayout.count(it.name())) header.insert(it.name(), it.attribute());
+}
+
 std::vector<ChannelData> exr_channels(const FrameImage& img) {
   std::vector<ChannelData> channels;
   add_channels(channels, img.rgb, 3, {"R", "G", "B"});
@@ -93,7 +106,9 @@ std::vector<ChannelData> exr_channels(const FrameImage& img) {
   if (!img.normal.empty()) add_channels(channels, img.normal, 3, {"N.X", "N.Y", "N.Z"});
   if (!img.depth.empty()) add_channels(channels, img.depth, 1, {"Z"});
   if (!img.cost.empty()) add_channels(channels, img.cost, 1, {"cost.time"});
+  if (!img.noisy_rgb.empty()) add_channels(channels, img.noisy_rgb, 3, {"noisy.R", "noisy.G", "noisy.B"});
   add_halves(channels, img);
+  for (const auto& [name, values] : img.extra_channels) add_channels(channels, values, 1, {name});
   return channels;
 }
 
@@ -123,6 +138,7 @@ void write_exr(const std::string& path, const FrameImage& img, const ImageWriteP
   header.insert("tesseraVersion", Imf::StringAttribute(tessera_version()));
   if (!m.scene_path.empty()) header.insert("scene", Imf::StringAttribute(m.scene_path));
   if (!m.camera_name.empty()) header.insert("camera", Imf::StringAttribute(m.camera_name));
+  if (!params.header_from.empty()) copy_attributes(params.header_from, header);
 
   const Imf::PixelType type = params.half ? Imf::HALF : Imf::FLOAT;
   Imf::FrameBuffer fb;

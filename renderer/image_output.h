@@ -50,6 +50,9 @@ struct ImageWriteParams {
   // continue it (see renderer/resume_layers.h). Null: a plain frame.
   const FilmState* resume_film = nullptr;
   std::string resume_settings;
+  // EXR: also copy the header attributes of this EXR (not its layout: channels, windows,
+  // compression), over tessera's own. A denoised frame keeps its render's metadata.
+  std::string header_from;
 };
 
 // Throws OutputPathError when `path` cannot be written: unknown format, missing or read-only

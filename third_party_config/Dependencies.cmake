@@ -25,6 +25,10 @@ find_package(TinyGLTF REQUIRED)
 # glm: vector and matrix math (libglm-dev), header only. Target: glm::glm
 find_package(glm REQUIRED)
 
+# Eigen 3.4: the small dense least-squares solves of the denoiser (libeigen3-dev), header
+# only. Target: Eigen3::Eigen
+find_package(Eigen3 3.4 REQUIRED NO_MODULE)
+
 # CLI11: command-line parsing with subcommands and --help (libcli11-dev).
 find_package(CLI11 REQUIRED)
 

@@ -1,0 +1,58 @@
+// A feature-guided regression denoiser of the NFOR family (Bitterli et al. 2016, "Nonlinearly
+// Weighted First-order Regression for Denoising Monte Carlo Renderings"): in a window around
+// each pixel, colour is regressed linearly on the features (constant, screen position, albedo,
+// normal, depth) with NL-means weights computed from the noisy colour. The features are first
+// prefiltered (NL-means guided by their half-buffer variance); each half buffer is regressed
+// with weights computed from the other one (cross-filtering), so the noise of the weights is
+// independent of the data; two candidate bandwidths are run and chosen per pixel by the error
+// the half buffers estimate; the two filtered halves are then combined.
+//
+// A plain image-processing library: Eigen, TBB and the standard library only.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+namespace tessera {
+
+// Every vector is row-major, top row first, 3 floats per pixel (depth and samples: 1).
+// Non-finite values are treated as missing: a colour half that is not finite at a pixel is
+// left out there (the other half stands in; a pixel with neither is reconstructed from its
+// neighbours), and a non-finite feature value is read as 0 (what the renderer writes where
+// no sample hit). The output never holds a non-finite value.
+struct DenoiseInput {
+  int width = 0, height = 0;
+  std::vector<float> color_even, color_odd;  // means of the even- and odd-numbered samples
+  std::vector<float> albedo, normal;  // first-hit feature means
+  // Feature half buffers; empty: the features are used as they are (no prefilter).
+  std::vector<float> albedo_even, albedo_odd, normal_even, normal_odd;
+  std::vector<float> depth;  // optional
+  // Optional per-pixel sample count (adaptive sampling gives pixels different counts): the
+  // even half holds ceil(n/2) samples, the odd half floor(n/2). Empty: equal halves.
+  std::vector<float> samples;
+};
+
+struct DenoiseParams {
+  int threads = 0;  // 0: all cores (TBB's default concurrency)
+  int radius = 7;  // regression window: (2 radius + 1)^2 pixels
+  int stride = 5;  // window centres every `stride` pixels (collaborative: each solve
+                   // reconstructs its whole window); must be at most radius + 1
+  float bandwidths[2] = {0.5f, 1.0f};  // the candidate NL-means bandwidths k
+  int feature_radius = 3;  // feature prefilter window: (2 r + 1)^2 pixels; 0: no prefilter
+  float feature_bandwidth = 1.0f;
+  int variance_radius = 2;  // the 1-dof per-pixel variance is averaged over (2 r + 1)^2 pixels
+  int selection_radius = 3;  // the estimated error of each candidate is averaged likewise
+  float ridge = 1e-3f;  // Tikhonov term on the feature coefficients, relative to the weight sum
+};
+
+struct DenoiseResult {
+  std::vector<float> rgb;  // 3 per pixel, finite, non-negative
+  std::vector<std::uint8_t> selected;  // 1 per pixel: the index of the chosen bandwidth
+  std::vector<float> variance;  // 1 per pixel: the estimated variance of the noisy mean colour (channel average)
+};
+
+// Throws std::invalid_argument when a size does not match width x height, the colour halves
+// or the albedo and normal are missing, or a parameter is out of range.
+DenoiseResult denoise(const DenoiseInput& in, const DenoiseParams& params);
+
+}  // namespace tessera

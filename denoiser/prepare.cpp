@@ -1,0 +1,156 @@
+#include "denoiser/prepare.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace tessera::denoiser {
+
+namespace {
+
+void check_size(const std::vector<float>& v, std::size_t expected, const char* name, bool optional) {
+  if (optional && v.empty()) return;
+  if (v.size() != expected)
+    throw std::invalid_argument(std::string("denoise: ") + name + " has " + std::to_string(v.size()) +
+                                " values, expected " + std::to_string(expected));
+}
+
+bool finite3(const std::vector<float>& v, std::size_t i) {
+  return std::isfinite(v[3 * i]) && std::isfinite(v[3 * i + 1]) && std::isfinite(v[3 * i + 2]);
+}
+
+// Per-pixel sample counts of the even (ceil(n/2)) and odd (floor(n/2)) halves.
+void sample_counts(const DenoiseInput& in, std::vector<float>& even, std::vector<float>& odd) {
+  const std::size_t n = static_cast<std::size_t>(in.width) * in.height;
+  even.assign(n, 1.0f);
+  odd.assign(n, 1.0f);
+  if (in.samples.empty()) return;
+  for (std::size_t i = 0; i < n; ++i) {
+    const float s = std::isfinite(in.samples[i]) && in.samples[i] > 0.0f ? std::floor(in.samples[i]) : 0.0f;
+    odd[i] = std::floor(s / 2);
+    even[i] = s - odd[i];
+  }
+}
+
+// Where a half is missing it takes the other half's values, so the guides stay meaningful.
+void fill_missing(Half& a, const Half& b) {
+  for (std::size_t i = 0; i < a.valid.size(); ++i)
+    if (a.valid[i] == 0.0f && b.valid[i] != 0.0f)
+      for (int c = 0; c < 3; ++c) a.color.at(c, i) = b.color.at(c, i);
+}
+
+// Per-sample variance sigma^2 from the two half means: E[(A - B)^2] = sigma^2 (1/nA + 1/nB),
+// one degree of freedom per pixel, so it is averaged over a box of pixels where both exist.
+Planes sample_variance(const Half& a, const Half& b, int radius) {
+  const std::size_t n = a.valid.size();
+  Planes s2(a.color.width, a.color.height, 3);
+  std::vector<float> both(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    both[i] = a.valid[i] * b.valid[i];
+    if (both[i] == 0.0f) continue;
+    const float scale = 1.0f / (1.0f / a.count[i] + 1.0f / b.count[i]);
+    for (int c = 0; c < 3; ++c) {
+      const float d = a.color.at(c, i) - b.color.at(c, i);
+      s2.at(c, i) = d * d * scale;
+    }
+  }
+  return box_mean(s2, radius, &both);
+}
+
+// The NL-means guide: the 3x3 patch mean (over pixels with any colour) and its variance,
+// the mean of the 9 variances divided by 9 (independent pixels).
+void make_guide(Half& h, const std::vector<float>& any) {
+  h.guide = box_mean(h.color, 1, &any);
+  h.guide_variance = box_mean(h.variance, 1, &any);
+  for (float& v : h.guide_variance.data) v /= 9.0f;
+}
+
+}  // namespace
+
+void validate(const DenoiseInput& in, const DenoiseParams& p) {
+  if (in.width <= 0 || in.height <= 0) throw std::invalid_argument("denoise: the image is empty");
+  const std::size_t n = static_cast<std::size_t>(in.width) * in.height;
+  check_size(in.color_even, 3 * n, "color_even", false);
+  check_size(in.color_odd, 3 * n, "color_odd", false);
+  check_size(in.albedo, 3 * n, "albedo", false);
+  check_size(in.normal, 3 * n, "normal", false);
+  check_size(in.albedo_even, 3 * n, "albedo_even", true);
+  check_size(in.albedo_odd, 3 * n, "albedo_odd", true);
+  check_size(in.normal_even, 3 * n, "normal_even", true);
+  check_size(in.normal_odd, 3 * n, "normal_odd", true);
+  check_size(in.depth, n, "depth", true);
+  check_size(in.samples, n, "samples", true);
+  const bool any_half = !in.albedo_even.empty() || !in.albedo_odd.empty() || !in.normal_even.empty() || !in.normal_odd.empty();
+  const bool all_halves = !in.albedo_even.empty() && !in.albedo_odd.empty() && !in.normal_even.empty() && !in.normal_odd.empty();
+  if (any_half && !all_halves)
+    throw std::invalid_argument("denoise: the feature half buffers must be given all four or none");
+  if (p.radius < 1 || p.radius > 32) throw std::invalid_argument("denoise: radius must be in [1, 32]");
+  if (p.stride < 1 || p.stride > p.radius + 1) throw std::invalid_argument("denoise: stride must be in [1, radius + 1]");
+  if (p.feature_radius < 0 || p.feature_radius > 16) throw std::invalid_argument("denoise: feature_radius must be in [0, 16]");
+  if (p.variance_radius < 0 || p.selection_radius < 0) throw std::invalid_argument("denoise: radii must be >= 0");
+  for (float k : p.bandwidths)
+    if (!(k > 0.0f)) throw std::invalid_argument("denoise: bandwidths must be > 0");
+  if (!(p.feature_bandwidth > 0.0f)) throw std::invalid_argument("denoise: feature_bandwidth must be > 0");
+  if (!(p.ridge >= 0.0f)) throw std::invalid_argument("denoise: ridge must be >= 0");
+  if (p.threads < 0) throw std::invalid_argument("denoise: threads must be >= 0");
+}
+
+Halves prepare_halves(const DenoiseInput& in, const DenoiseParams& p) {
+  const std::size_t n = static_cast<std::size_t>(in.width) * in.height;
+  Halves out;
+  const std::vector<float>* src[2] = {&in.color_even, &in.color_odd};
+  sample_counts(in, out.h[0].count, out.h[1].count);
+  for (int k = 0; k < 2; ++k) {
+    Half& h = out.h[k];
+    h.color = to_planes(*src[k], in.width, in.height, 3);
+    h.valid.resize(n);
+    for (std::size_t i = 0; i < n; ++i) h.valid[i] = h.count[i] > 0.0f && finite3(*src[k], i) ? 1.0f : 0.0f;
+    for (int c = 0; c < 3; ++c)
+      for (std::size_t i = 0; i < n; ++i) h.color.at(c, i) *= h.valid[i];
+  }
+  fill_missing(out.h[0], out.h[1]);
+  fill_missing(out.h[1], out.h[0]);
+  const Planes s2 = sample_variance(out.h[0], out.h[1], p.variance_radius);
+  std::vector<float> any(n);
+  for (std::size_t i = 0; i < n; ++i) any[i] = out.h[0].valid[i] + out.h[1].valid[i] > 0.0f ? 1.0f : 0.0f;
+  for (Half& h : out.h) {
+    h.variance = s2;
+    for (int c = 0; c < 3; ++c)
+      for (std::size_t i = 0; i < n; ++i) h.variance.at(c, i) /= std::max(h.count[i], 1.0f);
+    make_guide(h, any);
+  }
+  return out;
+}
+
+Features prepare_features(const DenoiseInput& in, const DenoiseParams& p, const Halves& halves) {
+  const int w = in.width, h = in.height;
+  const Planes albedo = to_planes(in.albedo, w, h, 3), normal = to_planes(in.normal, w, h, 3);
+  Features f;
+  if (in.depth.empty()) f.values = stack({&albedo, &normal});
+  else {
+    const Planes depth = to_planes(in.depth, w, h, 1);
+    f.values = stack({&albedo, &normal, &depth});
+  }
+  if (in.albedo_even.empty()) return f;
+  // Feature variance of the mean: (even - odd)^2 / (1/nA + 1/nB) / (nA + nB), smoothed; for
+  // albedo and normal only (depth has no halves).
+  const Planes halves_even[2] = {to_planes(in.albedo_even, w, h, 3), to_planes(in.normal_even, w, h, 3)};
+  const Planes halves_odd[2] = {to_planes(in.albedo_odd, w, h, 3), to_planes(in.normal_odd, w, h, 3)};
+  const std::size_t n = albedo.pixels();
+  Planes var(w, h, 6);
+  const std::vector<float>& ne = halves.h[0].count;
+  const std::vector<float>& no = halves.h[1].count;
+  std::vector<float> both(n);
+  for (std::size_t i = 0; i < n; ++i) both[i] = ne[i] > 0.0f && no[i] > 0.0f ? 1.0f : 0.0f;
+  for (int g = 0; g < 2; ++g)
+    for (int c = 0; c < 3; ++c)
+      for (std::size_t i = 0; i < n; ++i) {
+        if (both[i] == 0.0f) continue;
+        const float d = halves_even[g].at(c, i) - halves_odd[g].at(c, i);
+        var.at(3 * g + c, i) = d * d / (1.0f / ne[i] + 1.0f / no[i]) / (ne[i] + no[i]);
+      }
+  f.variance = box_mean(var, p.variance_radius, &both);
+  return f;
+}
+
+}  // namespace tessera::denoiser

@@ -1,0 +1,36 @@
+// From the caller's interleaved buffers to the denoiser's planar working set: the colour
+// halves with their validity, sample counts and smoothed variances, the NL-means guides,
+// and the features.
+#pragma once
+
+#include "denoiser/denoise.h"
+#include "denoiser/planes.h"
+
+namespace tessera::denoiser {
+
+struct Half {
+  Planes color;  // 3 channels; where this half is missing, the other half (or 0)
+  std::vector<float> valid;  // 1 where this half has finite values and at least one sample
+  std::vector<float> count;  // its number of samples (1 each when the input gives none)
+  Planes variance;  // 3: the variance of this half's mean, estimated from both halves, smoothed
+  Planes guide, guide_variance;  // 3 + 3: the 3x3 mean of the colour and its variance
+};
+
+struct Halves {
+  Half h[2];  // even, odd
+};
+
+// Throws std::invalid_argument on a size mismatch or a parameter out of range.
+void validate(const DenoiseInput& in, const DenoiseParams& p);
+
+Halves prepare_halves(const DenoiseInput& in, const DenoiseParams& p);
+
+struct Features {
+  Planes values;  // albedo (3), normal (3), then depth (1) when given
+  Planes variance;  // of the albedo and normal means (6); empty when the input has no feature halves
+};
+
+// The feature means, and their variance estimated from the feature halves when given.
+Features prepare_features(const DenoiseInput& in, const DenoiseParams& p, const Halves& halves);
+
+}  // namespace tessera::denoiser

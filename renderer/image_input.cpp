@@ -1,0 +1,47 @@
+#include "renderer/image_input.h"
+
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
+
+namespace tessera {
+
+std::vector<float> ExrChannels::interleave(const std::vector<std::string>& names) const {
+  const std::size_t n = static_cast<std::size_t>(width) * height, stride = names.size();
+  std::vector<float> out(n * stride);
+  for (std::size_t c = 0; c < stride; ++c) {
+    const auto it = channels.find(names[c]);
+    if (it == channels.end()) return {};
+    for (std::size_t i = 0; i < n; ++i) out[i * stride + c] = it->second[i];
+  }
+  return out;
+}
+
+ExrChannels read_exr_channels(const std::string& path) {
+  try {
+    Imf::InputFile file(path.c_str());
+    const Imath::Box2i window = file.header().dataWindow();
+    ExrChannels out;
+    out.width = window.max.x - window.min.x + 1;
+    out.height = window.max.y - window.min.y + 1;
+    const std::size_t n = static_cast<std::size_t>(out.width) * out.height;
+    Imf::FrameBuffer fb;
+    for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it) {
+      if (it.channel().xSampling != 1 || it.channel().ySampling != 1) continue;  // subsampled: not ours
+      std::vector<float>& data = out.channels[it.name()];
+      data.resize(n);
+      // The slice's origin is shifted so that the data window's first pixel lands at index 0.
+      char* base = reinterpret_cast<char*>(data.data()) -
+                   (static_cast<std::ptrdiff_t>(window.min.y) * out.width + window.min.x) * sizeof(float);
+      fb.insert(it.name(), Imf::Slice(Imf::FLOAT, base, sizeof(float), sizeof(float) * out.width));
+    }
+    file.setFrameBuffer(fb);
+    file.readPixels(window.min.y, window.max.y);
+    return out;
+  } catch (const std::exception& e) {
+    throw ImageInputError(path + ": cannot be read as an OpenEXR image: " + e.what());
+  }
+}
+
+}  // namespace tessera

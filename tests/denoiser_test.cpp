@@ -1,0 +1,272 @@
+// The denoiser (denoiser/denoise.h) on synthetic images whose answer is known: constants and
+// noise-free images come back unchanged, Gaussian noise drops by what the window allows (and
+// no more), an albedo edge stays sharp, the bits do not depend on the thread count, and
+// nothing non-finite gets through.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <functional>
+#include <random>
+#include <stdexcept>
+
+#include "denoiser/denoise.h"
+#include "denoiser/planes.h"
+
+namespace tessera {
+namespace {
+
+using Rgb = std::array<float, 3>;
+using Field = std::function<Rgb(int x, int y)>;
+
+struct Scene {
+  int width = 64, height = 64;
+  Field color = [](int, int) { return Rgb{0.5f, 0.5f, 0.5f}; };
+  Field albedo = [](int, int) { return Rgb{0.5f, 0.5f, 0.5f}; };
+  Field normal = [](int, int) { return Rgb{0.0f, 0.0f, 1.0f}; };
+  float sigma = 0.0f;  // standard deviation of each half's colour noise, per channel
+  unsigned seed = 1;
+};
+
+void put(std::vector<float>& v, std::size_t i, const Rgb& c) {
+  for (int k = 0; k < 3; ++k) v[3 * i + k] = c[k];
+}
+
+// Noise-free features (halves equal to the means); colour halves with independent noise.
+DenoiseInput make_input(const Scene& s) {
+  const std::size_t n = static_cast<std::size_t>(s.width) * s.height;
+  DenoiseInput in;
+  in.width = s.width, in.height = s.height;
+  for (auto* v : {&in.color_even, &in.color_odd, &in.albedo, &in.normal}) v->resize(3 * n);
+  std::mt19937 rng(s.seed);
+  std::normal_distribution<float> noise(0.0f, s.sigma > 0.0f ? s.sigma : 1.0f);
+  const float scale = s.sigma > 0.0f ? 1.0f : 0.0f;
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * s.width + x;
+      const Rgb c = s.color(x, y);
+      Rgb a = c, b = c;
+      for (int k = 0; k < 3; ++k) a[k] += scale * noise(rng), b[k] += scale * noise(rng);
+      put(in.color_even, i, a);
+      put(in.color_odd, i, b);
+      put(in.albedo, i, s.albedo(x, y));
+      put(in.normal, i, s.normal(x, y));
+    }
+  in.albedo_even = in.albedo_odd = in.albedo;
+  in.normal_even = in.normal_odd = in.normal;
+  return in;
+}
+
+std::vector<float> reference(const Scene& s) {
+  std::vector<float> ref(3 * static_cast<std::size_t>(s.width) * s.height);
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x) put(ref, static_cast<std::size_t>(y) * s.width + x, s.color(x, y));
+  return ref;
+}
+
+std::vector<float> noisy_mean(const DenoiseInput& in) {
+  std::vector<float> m(in.color_even.size());
+  for (std::size_t i = 0; i < m.size(); ++i) m[i] = 0.5f * (in.color_even[i] + in.color_odd[i]);
+  return m;
+}
+
+double rel_mse(const std::vector<float>& img, const std::vector<float>& ref) {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < ref.size(); ++i) {
+    const double d = img[i] - ref[i];
+    sum += d * d / (static_cast<double>(ref[i]) * ref[i] + 1e-2);
+  }
+  return sum / ref.size();
+}
+
+// A fixed texture in [0.1, 0.9]: a hash per pixel, so neighbours are unrelated.
+float texture(int x, int y, int k) {
+  unsigned h = static_cast<unsigned>(x) * 73856093u ^ static_cast<unsigned>(y) * 19349663u ^ static_cast<unsigned>(k) * 83492791u;
+  h ^= h >> 13, h *= 0x5bd1e995u, h ^= h >> 15;
+  return 0.1f + 0.8f * static_cast<float>(h & 0xffff) / 65535.0f;
+}
+
+TEST(DenoiserMath, ExpNegMatchesStdExp) {
+  // The degree-6 polynomial on |u| <= ln(2) / 2 errs by (ln 2 / 2)^7 / 7! ~ 1.2e-7; rounding
+  // x log2(e) to float adds |x| log2(e) 2^-24 ln 2 ~ 6e-8 |x|.
+  for (float x = 0.0f; x > -87.0f; x -= 0.01234f)
+    ASSERT_NEAR(denoiser::exp_neg(x), std::exp(x), (3e-7f + 1e-7f * -x) * std::exp(x)) << x;
+  EXPECT_EQ(denoiser::exp_neg(-88.0f), 0.0f);
+  EXPECT_EQ(denoiser::exp_neg(-INFINITY), 0.0f);
+  EXPECT_EQ(denoiser::exp_neg(NAN), 0.0f);
+}
+
+TEST(DenoiserMath, BoxMeanOfARampIsTheRampAwayFromTheBorder) {
+  // The mean of a linear function over a symmetric box is its centre value.
+  denoiser::Planes ramp(9, 7, 1);
+  for (int y = 0; y < 7; ++y)
+    for (int x = 0; x < 9; ++x) ramp.at(0, y * 9 + x) = 2.0f * x - 3.0f * y;
+  const denoiser::Planes mean = denoiser::box_mean(ramp, 2);
+  for (int y = 2; y < 5; ++y)
+    for (int x = 2; x < 7; ++x) EXPECT_NEAR(mean.at(0, y * 9 + x), 2.0f * x - 3.0f * y, 1e-5f);
+  // At the corner the box is clipped to [0, 2]^2: the mean of x is 1, of y is 1.
+  EXPECT_NEAR(mean.at(0, 0), 2.0f - 3.0f, 1e-5f);
+}
+
+TEST(DenoiserInput, SizeMismatchThrows) {
+  Scene s;
+  DenoiseInput in = make_input(s);
+  in.albedo.pop_back();
+  EXPECT_THROW(denoise(in, {}), std::invalid_argument);
+  in = make_input(s);
+  in.depth.assign(5, 1.0f);
+  EXPECT_THROW(denoise(in, {}), std::invalid_argument);
+  in = make_input(s);
+  in.normal_odd.clear();  // three of the four feature halves
+  EXPECT_THROW(denoise(in, {}), std::invalid_argument);
+}
+
+TEST(Denoiser, ConstantImageStaysConstant) {
+  // Varying noise-free features, constant colour: every window's fit is the constant, with
+  // zero coefficients on the features.
+  Scene s;
+  s.color = [](int, int) { return Rgb{0.25f, 0.5f, 2.0f}; };
+  s.albedo = [](int x, int y) { return Rgb{texture(x, y, 0), texture(x, y, 1), texture(x, y, 2)}; };
+  s.normal = [](int x, int y) { return Rgb{texture(x, y, 3) - 0.5f, 0.0f, 1.0f}; };
+  const DenoiseResult r = denoise(make_input(s), {});
+  for (std::size_t i = 0; i < r.rgb.size(); i += 3) {
+    ASSERT_NEAR(r.rgb[i], 0.25f, 1e-5f);
+    ASSERT_NEAR(r.rgb[i + 1], 0.5f, 1e-5f);
+    ASSERT_NEAR(r.rgb[i + 2], 2.0f, 1e-5f);
+  }
+}
+
+TEST(Denoiser, NoiseFreeImageIsReturnedUnchanged) {
+  // Equal halves: the variance is 0, so NL-means admits only pixels whose patch is the same,
+  // and each pixel keeps its value.
+  Scene s;
+  s.color = [](int x, int y) {
+    return Rgb{0.6f + 0.5f * std::sin(0.3f * x), 0.1f + texture(x, y, 0), 1.0f + 0.01f * x * y};
+  };
+  s.albedo = [](int x, int y) { return Rgb{texture(x, y, 0), 0.5f, 0.5f}; };
+  const DenoiseInput in = make_input(s);
+  const DenoiseResult r = denoise(in, {});
+  for (std::size_t i = 0; i < r.rgb.size(); ++i) ASSERT_NEAR(r.rgb[i], in.color_even[i], 1e-4f * in.color_even[i]) << i;
+}
+
+TEST(Denoiser, HalvesAreWeightedByTheirSampleCounts) {
+  // Constant halves 1 and 4 with 3 samples per pixel (2 even, 1 odd): each half's fit is its
+  // constant, and the combination is the sample mean (2 x 1 + 1 x 4) / 3 = 2.
+  Scene s;
+  DenoiseInput in = make_input(s);
+  std::fill(in.color_even.begin(), in.color_even.end(), 1.0f);
+  std::fill(in.color_odd.begin(), in.color_odd.end(), 4.0f);
+  in.samples.assign(static_cast<std::size_t>(s.width) * s.height, 3.0f);
+  const DenoiseResult r = denoise(in, {});
+  for (float v : r.rgb) ASSERT_NEAR(v, 2.0f, 1e-5f);
+}
+
+// A smooth image the features explain: colour = albedo x 0.8, albedo a smooth gradient.
+Scene gradient_scene(float sigma) {
+  Scene s;
+  s.width = s.height = 96;
+  s.sigma = sigma;
+  s.albedo = [](int x, int y) { return Rgb{0.2f + 0.006f * x, 0.3f + 0.004f * y, 0.6f}; };
+  s.color = [a = s.albedo](int x, int y) {
+    Rgb c = a(x, y);
+    for (float& v : c) v *= 0.8f;
+    return c;
+  };
+  return s;
+}
+
+TEST(Denoiser, GaussianNoiseDropsAsTheWindowAllows) {
+  // Lower bound. A window holds N = (2R + 1)^2 = 225 pixels and the model P = 10
+  // coefficients; least-squares fitted values average a variance of sigma^2 P / N over the
+  // window (the hat matrix has trace P). NL-means weights on a pure-noise difference keep
+  // most pixels (d = (chi2_3 / 3 - 1) / k^2 <= 0, weight 1, with probability 0.61), so at
+  // least N / 2 count: the noise variance drops by at least N / (2 P) = 11.25, and the model
+  // is exact here, so the relMSE does too. Collaborative averaging only adds to that.
+  // Upper bound. Given its weights (from the other half), a filtered half is an affine
+  // combination, weights summing to 1, of at most M = (4R + 1)^2 = 841 pixels (windows within
+  // R, each reaching R further), whose variance is at least sigma^2 / M: no more than 841.
+  const Scene s = gradient_scene(0.1f);
+  const DenoiseInput in = make_input(s);
+  const std::vector<float> ref = reference(s);
+  const double before = rel_mse(noisy_mean(in), ref);
+  const double after = rel_mse(denoise(in, {}).rgb, ref);
+  const DenoiseParams p;
+  const double n = (2.0 * p.radius + 1) * (2.0 * p.radius + 1), m = (4.0 * p.radius + 1) * (4.0 * p.radius + 1);
+  EXPECT_GT(before / after, n / (2 * 10)) << "before " << before << " after " << after;
+  EXPECT_LT(before / after, m);
+}
+
+// Two regions with the same colour noise: albedo 0.2 left, 0.5 right, colour = albedo.
+Scene edge_scene(bool albedo_edge) {
+  Scene s;
+  s.width = 48, s.height = 256, s.sigma = 0.4f;
+  s.color = [](int x, int) { return x < 24 ? Rgb{0.2f, 0.2f, 0.2f} : Rgb{0.5f, 0.5f, 0.5f}; };
+  s.albedo = albedo_edge ? s.color : [](int, int) { return Rgb{0.35f, 0.35f, 0.35f}; };
+  return s;
+}
+
+// The mean of column x minus its true value.
+double column_error(const std::vector<float>& img, const Scene& s, int x) {
+  double sum = 0.0;
+  for (int y = 0; y < s.height; ++y) sum += img[3 * (static_cast<std::size_t>(y) * s.width + x)];
+  return sum / s.height - s.color(x, 0)[0];
+}
+
+TEST(Denoiser, AlbedoEdgeIsNotBlurred) {
+  // The columns either side of the edge keep their side's mean: the error of a column mean
+  // is within 4 standard errors of the noisy column mean, 4 sigma_m / sqrt(H) with sigma_m =
+  // sigma / sqrt(2) (the denoised column mean averages at least as many pixels). Without the
+  // albedo edge (a flat albedo, the second case) the same noise does blur the edge past it.
+  const Scene s = edge_scene(true);
+  const std::vector<float> out = denoise(make_input(s), {}).rgb;
+  const double bound = 4.0 * (s.sigma / std::sqrt(2.0)) / std::sqrt(s.height);
+  EXPECT_LT(std::abs(column_error(out, s, 23)), bound);
+  EXPECT_LT(std::abs(column_error(out, s, 24)), bound);
+
+  const Scene flat = edge_scene(false);
+  const std::vector<float> blurred = denoise(make_input(flat), {}).rgb;
+  EXPECT_GT(std::abs(column_error(blurred, flat, 23)) + std::abs(column_error(blurred, flat, 24)), 2 * bound);
+}
+
+TEST(Denoiser, SameBitsForAnyThreadCount) {
+  Scene s = gradient_scene(0.2f);
+  s.width = 131, s.height = 77;  // not multiples of the stride
+  const DenoiseInput in = make_input(s);
+  DenoiseParams one, two;
+  one.threads = 1;
+  two.threads = 2;
+  const DenoiseResult a = denoise(in, one), b = denoise(in, two);
+  ASSERT_EQ(a.rgb.size(), b.rgb.size());
+  EXPECT_EQ(std::memcmp(a.rgb.data(), b.rgb.data(), a.rgb.size() * sizeof(float)), 0);
+  EXPECT_EQ(a.selected, b.selected);
+}
+
+TEST(Denoiser, NonFiniteInputIsMissingNeverOutput) {
+  // A constant noise-free image with holes: a pixel whose halves are both NaN or infinite is
+  // reconstructed from its neighbours' fits, which are the constant.
+  Scene s;
+  s.color = [](int, int) { return Rgb{0.3f, 0.6f, 0.9f}; };
+  DenoiseInput in = make_input(s);
+  const std::size_t hole = 3 * (20 * 64 + 20), one_half = 3 * (40 * 64 + 7);
+  for (int k = 0; k < 3; ++k) {
+    in.color_even[hole + k] = NAN;
+    in.color_odd[hole + k] = INFINITY;
+    in.color_odd[one_half + k] = -INFINITY;
+  }
+  in.albedo[3 * 100] = NAN;
+  in.normal_even[3 * 200 + 1] = INFINITY;
+  in.depth.assign(64 * 64, 2.0f);
+  in.depth[300] = NAN;
+  in.samples.assign(64 * 64, 4.0f);
+  in.samples[400] = NAN;
+  const DenoiseResult r = denoise(in, {});
+  for (float v : r.rgb) ASSERT_TRUE(std::isfinite(v));
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(r.rgb[hole + k], s.color(0, 0)[k], 1e-4f);
+    EXPECT_NEAR(r.rgb[one_half + k], s.color(0, 0)[k], 1e-4f);
+  }
+}
+
+}  // namespace
+}  // namespace tessera
