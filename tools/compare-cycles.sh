@@ -7,7 +7,9 @@
 #   - noise variance at equal spp: mean over pixels and RGB of (seed 1 - seed 2)^2 / 2;
 #   - time to equal noise: seconds x noise variance (for an unbiased renderer the variance
 #     falls as 1/samples, so this product does not depend on the spp: lower is better), and
-#     Cycles' over tessera's: > 1 means tessera reaches a given noise sooner.
+#     Cycles' over tessera's: > 1 means tessera reaches a given noise sooner; and the same
+#     ratio for the relative noise (each pixel's variance over its squared mean), which does
+#     not reward the darker image for being darker.
 # Also writes, per scene, NAME-tessera-vs-cycles.png (seed 1: tessera left, Cycles right) into
 # OUT_DIR. Each run's times go to stderr.
 #   tools/compare-cycles.sh [--spp N] [--width W] [--height H] [--rounds R] [--out DIR] [--envmap FILE] SCENE... [-- TESSERA_OPTION...]
@@ -45,8 +47,8 @@ world=(--background 1,1,1)
 [[ -n "$envmap" ]] && world=(--envmap "$envmap")
 samples=$((width * height * spp))
 echo "load before: $(uptime)" >&2
-echo "| scene | tessera s | Cycles s | tessera M samples/s | Cycles M samples/s | noise tessera | noise Cycles | s x noise tessera | s x noise Cycles | time to equal noise, Cycles / tessera |"
-echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+echo "| scene | tessera s | Cycles s | tessera M samples/s | Cycles M samples/s | noise tessera | noise Cycles | s x noise tessera | s x noise Cycles | time to equal noise, Cycles / tessera | same, relative noise |"
+echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
 for scene in "${scenes[@]}"; do
   name=$(basename "${scene%.*}")
   t_times=() c_times=()
@@ -64,9 +66,15 @@ for scene in "${scenes[@]}"; do
   # Both renderers are deterministic per seed, so the last round's images stand for all.
   nt=$(metrics noise "$out/$name-tessera-s1.exr" "$out/$name-tessera-s2.exr")
   nc=$(metrics noise "$out/$name-cycles-s1.exr" "$out/$name-cycles-s2.exr")
-  awk -v n="$name" -v t="$t" -v c="$c" -v s="$samples" -v nt="$nt" -v nc="$nc" 'BEGIN {
-    printf "| %s | %.3f | %.3f | %.3f | %.3f | %.3e | %.3e | %.3e | %.3e | %.2fx |\n",
-      n, t, c, s / t / 1e6, s / c / 1e6, nt, nc, t * nt, c * nc, (c * nc) / (t * nt) }'
+  rt=$(metrics noise --relative "$out/$name-tessera-s1.exr" "$out/$name-tessera-s2.exr")
+  rc=$(metrics noise --relative "$out/$name-cycles-s1.exr" "$out/$name-cycles-s2.exr")
+  # Cycles' render_time is given to 0.01 s: a render that short cannot be timed (n/a).
+  awk -v n="$name" -v t="$t" -v c="$c" -v s="$samples" -v nt="$nt" -v nc="$nc" -v rt="$rt" -v rc="$rc" '
+    function per(x, y, f) { return x > 0 && y > 0 ? sprintf(f, x / y) : "n/a" }
+    BEGIN {
+      printf "| %s | %.3f | %.2f | %s | %s | %.3e | %.3e | %.3e | %.3e | %s | %s |\n", n, t, c,
+        per(s / 1e6, t, "%.3f"), per(s / 1e6, c, "%.3f"), nt, nc, t * nt, c * nc,
+        per(c * nc, t * nt, "%.2fx"), per(c * rc, t * rt, "%.2fx") }'
   echo "$name: tessera ${t_times[*]} s; Cycles ${c_times[*]} s" >&2
   to_png "$out/$name-tessera-vs-cycles.png" "$out/$name-tessera-s1.exr" "$out/$name-cycles-s1.exr"
 done
