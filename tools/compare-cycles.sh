@@ -8,8 +8,8 @@
 #   - time to equal noise: seconds x noise variance (for an unbiased renderer the variance
 #     falls as 1/samples, so this product does not depend on the spp: lower is better), and
 #     Cycles' over tessera's: > 1 means tessera reaches a given noise sooner; and the same
-#     ratio for the relative noise (each pixel's variance over its squared mean), which does
-#     not reward the darker image for being darker.
+#     ratio for the noise normalised by the image's squared mean value, which does not reward
+#     the darker image for being darker.
 # Also writes, per scene, NAME-tessera-vs-cycles.png (seed 1: tessera left, Cycles right) into
 # OUT_DIR. Each run's times go to stderr.
 #   tools/compare-cycles.sh [--spp N] [--width W] [--height H] [--rounds R] [--out DIR] [--envmap FILE] SCENE... [-- TESSERA_OPTION...]
@@ -47,7 +47,7 @@ world=(--background 1,1,1)
 [[ -n "$envmap" ]] && world=(--envmap "$envmap")
 samples=$((width * height * spp))
 echo "load before: $(uptime)" >&2
-echo "| scene | tessera s | Cycles s | tessera M samples/s | Cycles M samples/s | noise tessera | noise Cycles | s x noise tessera | s x noise Cycles | time to equal noise, Cycles / tessera | same, relative noise |"
+echo "| scene | tessera s | Cycles s | tessera M samples/s | Cycles M samples/s | noise tessera | noise Cycles | s x noise tessera | s x noise Cycles | time to equal noise, Cycles / tessera | same, normalised noise |"
 echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
 for scene in "${scenes[@]}"; do
   name=$(basename "${scene%.*}")
@@ -66,8 +66,8 @@ for scene in "${scenes[@]}"; do
   # Both renderers are deterministic per seed, so the last round's images stand for all.
   nt=$(metrics noise "$out/$name-tessera-s1.exr" "$out/$name-tessera-s2.exr")
   nc=$(metrics noise "$out/$name-cycles-s1.exr" "$out/$name-cycles-s2.exr")
-  rt=$(metrics noise --relative "$out/$name-tessera-s1.exr" "$out/$name-tessera-s2.exr")
-  rc=$(metrics noise --relative "$out/$name-cycles-s1.exr" "$out/$name-cycles-s2.exr")
+  rt=$(metrics noise --normalized "$out/$name-tessera-s1.exr" "$out/$name-tessera-s2.exr")
+  rc=$(metrics noise --normalized "$out/$name-cycles-s1.exr" "$out/$name-cycles-s2.exr")
   # Cycles' render_time is given to 0.01 s: a render that short cannot be timed (n/a).
   awk -v n="$name" -v t="$t" -v c="$c" -v s="$samples" -v nt="$nt" -v nc="$nc" -v rt="$rt" -v rc="$rc" '
     function per(x, y, f) { return x > 0 && y > 0 ? sprintf(f, x / y) : "n/a" }
