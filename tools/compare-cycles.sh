@@ -19,6 +19,7 @@
 # build/tessera).
 # Render time is each renderer's own, from its EXR header (tessera: renderTimeSeconds; Cycles:
 # render_time), without start-up, scene import or BVH build.
+# shellcheck disable=SC2054  # commas inside option values (1,1,1; albedo,normal) are meant
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 tessera="${TESSERA:-$root/build/tessera}"

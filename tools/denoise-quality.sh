@@ -14,6 +14,7 @@
 # tessera binary has --denoise (TESSERA=path, default build/tessera), the denoised column is
 # skipped, with a message. The reference is reused while the scene and options are the same;
 # --fresh-ref renders it again (do so after a change to the renderer).
+# shellcheck disable=SC2054  # commas inside option values (1,1,1; albedo,normal) are meant
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 tessera="${TESSERA:-$root/build/tessera}"

@@ -1,3 +1,4 @@
+# shellcheck shell=bash disable=SC2154,SC2054  # the caller sets root, tessera, out, tessera_extra; commas are oiiotool's
 # Shared by tools/compare-cycles.sh and tools/denoise-quality.sh (sourced, not run): running
 # tessera and Cycles once, reading their render times, medians, PNGs.
 # The caller sets: root (the repository), tessera (the binary), out (a directory), and may set
@@ -8,7 +9,7 @@ metrics() { /usr/bin/python3 "$root/tools/image_metrics.py" "$@"; }  # Debian's 
 median() { sort -g | awk '{a[NR]=$1} END {print (NR%2) ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2}'; }
 
 # Does this tessera binary have the option? (--denoise, --noise-threshold: added by other branches)
-tessera_has() { "$tessera" render --help 2>/dev/null | grep -q -- "$1"; }
+tessera_has() { "$tessera" render --help 2>/dev/null | grep -- "$1" >/dev/null; }  # not -q: an early exit would SIGPIPE tessera
 
 # tessera_render OUT.exr SCENE OPTION...: renders, prints the wall seconds (process start to
 # exit: start-up, loading, BVH, sampling, any denoising, writing). tessera's own sampling time
