@@ -1,64 +1,85 @@
 #!/usr/bin/env bash
-# Renders glTF scenes with tessera and with Blender Cycles at matched settings (uniform
-# white world of radiance 1, 8 bounces, no adaptive sampling or denoising, 2 threads, same
-# camera, size and samples), alternating A B A B, and prints a Markdown table of camera
-# samples per second (median per renderer) and their ratio; each run's times go to stderr.
-# Also writes, per scene, a PNG with the two images side by side into OUT_DIR.
-#   tools/compare-cycles.sh [--spp N] [--width W] [--height H] [--rounds R] [--out DIR] SCENE...
-# Needs: apt-get install blender python3-numpy openimageio-tools; a built build/tessera.
-# Render time is each renderer's own (tessera: "render X s"; Cycles: render_time in its EXR
-# header), without start-up, scene import or BVH build.
+# Renders glTF scenes with tessera and with Blender Cycles at matched settings (8 bounces, no
+# adaptive sampling or denoising in Cycles, 2 threads, same camera, size and samples; a uniform
+# white world of radiance 1, or with --envmap that image as the world), each with seed 1 and
+# seed 2, alternating A B A B, and prints a Markdown table per scene of
+#   - render seconds (median of all 2 x ROUNDS renders per renderer) and camera samples/s;
+#   - noise variance at equal spp: mean over pixels and RGB of (seed 1 - seed 2)^2 / 2;
+#   - time to equal noise: seconds x noise variance (for an unbiased renderer the variance
+#     falls as 1/samples, so this product does not depend on the spp: lower is better), and
+#     Cycles' over tessera's: > 1 means tessera reaches a given noise sooner; and the same
+#     ratio for the noise normalised by the image's squared mean value, which does not reward
+#     the darker image for being darker.
+# Also writes, per scene, NAME-tessera-vs-cycles.png (seed 1: tessera left, Cycles right) into
+# OUT_DIR. Each run's times go to stderr.
+#   tools/compare-cycles.sh [--spp N] [--width W] [--height H] [--rounds R] [--out DIR] [--envmap FILE] SCENE... [-- TESSERA_OPTION...]
+# TESSERA_OPTIONs go to every tessera render (e.g. -- --sampler independent; the adaptive
+# branch's --noise-threshold 0.01 --min-spp 16). Needs: apt-get install blender
+# python3-numpy python3-openimageio openimageio-tools; a built tessera (TESSERA=path, default
+# build/tessera).
+# Render time is each renderer's own, from its EXR header (tessera: renderTimeSeconds; Cycles:
+# render_time), without start-up, scene import or BVH build.
+# shellcheck disable=SC2054  # commas inside option values (1,1,1; albedo,normal) are meant
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 tessera="${TESSERA:-$root/build/tessera}"
-spp=16 width=640 height=360 rounds=2 out=/tmp/tessera-vs-cycles
-while [[ $# -gt 0 && "$1" == --* ]]; do
+source "$root/tools/measure-lib.sh"
+usage="usage: $0 [--spp N] [--width W] [--height H] [--rounds R] [--out DIR] [--envmap FILE] SCENE... [-- TESSERA_OPTION...]"
+spp=64 width=640 height=360 rounds=3 out=/tmp/tessera-vs-cycles envmap=""
+while [[ $# -gt 0 && "$1" == --?* ]]; do
   case "$1" in
     --spp) spp=$2; shift 2 ;;
     --width) width=$2; shift 2 ;;
     --height) height=$2; shift 2 ;;
     --rounds) rounds=$2; shift 2 ;;
     --out) out=$2; shift 2 ;;
-    *) echo "unknown option $1" >&2; exit 2 ;;
+    --envmap) envmap=$(realpath -e "$2"); shift 2 ;;
+    *) echo "unknown option $1; $usage" >&2; exit 2 ;;
   esac
 done
-[[ $# -gt 0 ]] || { echo "usage: $0 [--spp N] [--width W] [--height H] [--rounds R] [--out DIR] SCENE..." >&2; exit 2; }
+scenes=()
+while [[ $# -gt 0 && "$1" != -- ]]; do scenes+=("$1"); shift; done
+[[ $# -gt 0 ]] && shift  # the --
+tessera_extra=("$@")
+[[ ${#scenes[@]} -gt 0 ]] || { echo "$usage" >&2; exit 2; }
 mkdir -p "$out"
 
-median() { sort -g | awk '{a[NR]=$1} END {print (NR%2) ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2}'; }
-
-tessera_seconds() {  # scene out.exr -> render seconds
-  "$tessera" render "$1" -o "$2" --width "$width" --height "$height" --spp "$spp" --max-bounces 8 \
-    --threads 2 --background 1,1,1 2>&1 | sed -n 's/.*render \([0-9.]*\) s$/\1/p'
-}
-
-cycles_seconds() {  # scene out.exr -> render seconds
-  # A plain environment: Blender must not pick up a pyenv Python's standard library.
-  env -i HOME="$HOME" PATH=/usr/bin:/bin blender -b --factory-startup -t 2 --python "$root/tools/peers/cycles_render.py" \
-    -- "$1" "$2" "$spp" "$width" "$height" >"$out/cycles.log" 2>&1
-  iinfo -v "$2" | sed -n 's/.*cycles.ViewLayer.render_time: "\([0-9]*\):\([0-9.]*\)".*/\1 \2/p' | awk '{print $1 * 60 + $2}'
-}
-
+world=(--background 1,1,1)
+[[ -n "$envmap" ]] && world=(--envmap "$envmap")
 samples=$((width * height * spp))
-echo "| scene | tessera s (median) | Cycles s (median) | tessera M samples/s | Cycles M samples/s | tessera / Cycles |"
-echo "|---|---:|---:|---:|---:|---:|"
-for scene in "$@"; do
+echo "load before: $(uptime)" >&2
+echo "| scene | tessera s | Cycles s | tessera M samples/s | Cycles M samples/s | noise tessera | noise Cycles | s x noise tessera | s x noise Cycles | time to equal noise, Cycles / tessera | same, normalised noise |"
+echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+for scene in "${scenes[@]}"; do
   name=$(basename "${scene%.*}")
   t_times=() c_times=()
   for ((r = 0; r < rounds; ++r)); do
-    t_times+=("$(tessera_seconds "$scene" "$out/$name-tessera.exr")")
-    c_times+=("$(cycles_seconds "$scene" "$out/$name-cycles.exr")")
+    for seed in 1 2; do
+      tessera_render "$out/$name-tessera-s$seed.exr" "$scene" --width "$width" --height "$height" --spp "$spp" \
+        --max-bounces 8 --threads 2 --seed "$seed" "${world[@]}" >/dev/null
+      t_times+=("$(metrics render-time "$out/$name-tessera-s$seed.exr")")
+      cycles_render "$out/$name-cycles-s$seed.exr" "$scene" "$spp" "$width" "$height" "$seed" "$envmap"
+      c_times+=("$(metrics render-time "$out/$name-cycles-s$seed.exr")")
+    done
   done
   t=$(printf '%s\n' "${t_times[@]}" | median)
   c=$(printf '%s\n' "${c_times[@]}" | median)
-  awk -v n="$name" -v t="$t" -v c="$c" -v s="$samples" \
-    'BEGIN {printf "| %s | %.2f | %.2f | %.3f | %.3f | %.2fx |\n", n, t, c, s / t / 1e6, s / c / 1e6, c / t}'
+  # Both renderers are deterministic per seed, so the last round's images stand for all.
+  nt=$(metrics noise "$out/$name-tessera-s1.exr" "$out/$name-tessera-s2.exr")
+  nc=$(metrics noise "$out/$name-cycles-s1.exr" "$out/$name-cycles-s2.exr")
+  rt=$(metrics noise --normalized "$out/$name-tessera-s1.exr" "$out/$name-tessera-s2.exr")
+  rc=$(metrics noise --normalized "$out/$name-cycles-s1.exr" "$out/$name-cycles-s2.exr")
+  # Cycles' render_time is given to 0.01 s: a render that short cannot be timed (n/a).
+  awk -v n="$name" -v t="$t" -v c="$c" -v s="$samples" -v nt="$nt" -v nc="$nc" -v rt="$rt" -v rc="$rc" '
+    function per(x, y, f) { return x > 0 && y > 0 ? sprintf(f, x / y) : "n/a" }
+    BEGIN {
+      printf "| %s | %.3f | %.2f | %s | %s | %.3e | %.3e | %.3e | %.3e | %s | %s |\n", n, t, c,
+        per(s / 1e6, t, "%.3f"), per(s / 1e6, c, "%.3f"), nt, nc, t * nt, c * nc,
+        per(c * nc, t * nt, "%.2fx"), per(c * rc, t * rt, "%.2fx") }'
   echo "$name: tessera ${t_times[*]} s; Cycles ${c_times[*]} s" >&2
-  # RGB only: tessera's EXR has an A channel and Cycles' has none, which would leave the
-  # Cycles half transparent in the PNG.
-  oiiotool "$out/$name-tessera.exr" --ch R,G,B --colorconvert linear sRGB \
-    "$out/$name-cycles.exr" --ch R,G,B --colorconvert linear sRGB \
-    --mosaic 2x1 -o "$out/$name-tessera-vs-cycles.png" 2>/dev/null || true
+  to_png "$out/$name-tessera-vs-cycles.png" "$out/$name-tessera-s1.exr" "$out/$name-cycles-s1.exr"
 done
 echo
-echo "$width x $height, $spp spp, 8 bounces, 2 threads, white world; each renderer run $rounds times, alternating."
+echo "$width x $height, $spp spp, 8 bounces, 2 threads, $([[ -n "$envmap" ]] && echo "world: $(basename "$envmap")" || echo "white world");" \
+  "seeds 1 and 2, each renderer run $rounds times per seed, alternating; medians.${tessera_extra[*]:+ tessera options: ${tessera_extra[*]}.}"
+echo "load after: $(uptime)" >&2
