@@ -37,6 +37,7 @@ struct RenderOptions {
   float clamp = 0.0f;
   float noise_threshold = 0.0f;  // adaptive sampling: 0 off
   int min_spp = 0;  // adaptive sampling: 0 automatic
+  bool denoise = false;
 };
 
 struct InfoOptions {

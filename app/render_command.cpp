@@ -1,23 +1,19 @@
 // tessera render: glTF in, HDR OpenEXR (and an optional preview) out.
 #include <algorithm>
-#include <chrono>
-#include <cmath>
 #include <filesystem>
 
 #include <fmt/format.h>
 
 #include "app/commands.h"
 #include "app/exit_codes.h"
+#include "app/frame_pipeline.h"
 #include "app/interrupt.h"
-#include "app/memory_check.h"
 #include "app/profile_outputs.h"
 #include "app/progress.h"
-#include "app/render_setup.h"
 #include "app/resume_settings.h"
 #include "renderer/image_output.h"
 #include "renderer/render.h"
 #include "renderer/resume_layers.h"
-#include "scene_io/gltf_loader.h"
 
 namespace tessera {
 
@@ -86,6 +82,10 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
                   "with albedo and normal; spp: each pixel's sample count)")
       ->delimiter(',')
       ->check(CLI::IsMember({"albedo", "normal", "depth", "cost", "halves"}));
+  cmd->add_flag("--denoise", o.denoise,
+                "Denoise the finished frame (feature-guided regression on the half buffers, albedo and normal, "
+                "which it turns on): RGB is the denoised image, noisy.R/G/B the beauty as rendered; the preview "
+                "shows the denoised one. Not applied to checkpoints or an interrupted frame");
   cmd->add_flag("--half", o.half, "Write 16-bit half floats to the EXR instead of 32-bit floats");
   cmd->add_option("--exposure", o.exposure, "Exposure in stops applied to non-EXR outputs (display formats: then sRGB encoded; .hdr/.tif/.pfm: linear)")
       ->check(CLI::Range(-64.0f, 64.0f))->capture_default_str();
@@ -127,61 +127,6 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
 
 namespace {
 
-vec3 parse_background(const std::string& text, bool scene_has_lights) {
-  if (text == "auto") return vec3(scene_has_lights ? 0.0f : 1.0f);
-  vec3 c;
-  char tail;
-  const int n = std::sscanf(text.c_str(), "%f,%f,%f%c", &c.r, &c.g, &c.b, &tail);
-  if (n == 1) c = vec3(c.r);
-  else if (n != 3) throw UsageError("--background " + text + ": expected R,G,B (three numbers), one number, or auto");
-  if (!is_finite(c) || glm::any(glm::lessThan(c, vec3(0.0f))))
-    throw UsageError("--background " + text + ": values must be finite and not negative");
-  return c;
-}
-
-std::string default_output(const std::string& scene_path) {
-  return std::filesystem::path(scene_path).stem().string() + ".exr";
-}
-
-double seconds_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
-
-bool is_exr(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ext == ".exr";
-}
-
-// `partial`: fewer samples than --spp somewhere; such a frame also carries the film to
-// resume from when it is an EXR.
-ImageWriteParams write_params(const RenderOptions& o, const RenderSettings& settings, const RenderCamera& rc,
-                              const Camera& camera, const RenderStats& stats, bool partial) {
-  ImageWriteParams write;
-  write.half = o.half;
-  write.exposure = o.exposure;
-  FrameMetadata& meta = write.metadata;
-  meta.render_seconds = stats.seconds;
-  meta.seed = settings.seed;
-  meta.sampler = sampler_name(settings.sampler);
-  meta.threads = stats.threads;
-  meta.tile_size = settings.tile_size;
-  meta.max_bounces = settings.max_bounces;
-  meta.dropped_samples = stats.dropped_samples;
-  meta.world_to_camera = rc.world_to_camera();
-  meta.world_to_ndc = rc.world_to_ndc();
-  meta.scene_path = o.scene_path;
-  meta.camera_name = camera.name;
-  meta.partial = partial;
-  meta.target_spp = settings.spp;
-  if (settings.adaptive.on()) {
-    meta.noise_threshold = settings.adaptive.threshold;
-    meta.min_spp = adaptive_min_spp(settings.adaptive, settings.spp);
-    meta.converged_pixels = stats.converged_pixels;
-  }
-  return write;
-}
-
 // "62% of pixels converged": how much adaptive sampling saved, and where the counts ended.
 void print_adaptive_summary(const RenderSettings& settings, const RenderResult& result) {
   const FilmState& film = result.film;
@@ -222,93 +167,25 @@ void print_summary(const RenderOptions& o, const std::string& output, const Rend
     fmt::print(stderr, "tessera: {}wrote {}{}\n", why, output, o.preview.empty() ? "" : " and " + o.preview);
 }
 
-// Writes -o and --preview; an EXR that is partial also carries the film to resume from.
-void write_outputs(const std::string& output, const std::string& preview, const FrameImage& image,
-                   ImageWriteParams params, const FilmState& film, const std::string& resume_text) {
-  if (params.metadata.partial && is_exr(output)) {
-    params.resume_film = &film;
-    params.resume_settings = resume_text;
-  }
-  write_image(output, image, params);
-  params.resume_film = nullptr;
-  if (!preview.empty()) write_image(preview, image, params);
-}
-
 }  // namespace
 
 int run_render(const RenderOptions& o) {
-  const std::string output = !o.output.empty() ? o.output : !o.resume.empty() ? o.resume : default_output(o.scene_path);
-  check_output_path(output);  // before any work: a bad path costs nothing
-  std::string resumed_settings;  // read first: a file that cannot be resumed costs nothing
+  // Every path and the resume file first: a bad one costs nothing.
+  check_output_path(frame_output_path(o));
+  std::string resumed_settings;
   if (!o.resume.empty()) resumed_settings = read_resume_settings(o.resume);
   if (!o.preview.empty()) check_output_path(o.preview);
   const ProfileOutputs profile_outputs{o.stats_json, o.trace, o.heatmap};
   check_profile_outputs(profile_outputs);
 
-  auto t0 = std::chrono::steady_clock::now();
-  GltfLoadResult loaded = load_gltf(o.scene_path, {o.scene});
-  for (const std::string& w : loaded.warnings) fmt::print(stderr, "tessera: warning: {}: {}\n", o.scene_path, w);
-  const double load_seconds = seconds_since(t0);
+  LoadedScene loaded = load_scene(o);
+  FramePlan plan = plan_frame(o, loaded.gltf.scene);
+  const double load_seconds = loaded.seconds;
+  const std::uint64_t triangles = loaded.triangles;
+  const BuiltFrame built = build_frame(std::move(loaded), plan);
+  RenderSettings& settings = plan.settings;
 
-  RenderSettings settings;
-  settings.width = o.width;
-  settings.height = o.height;
-  const Camera* scene_camera = nullptr;
-  Camera probe;  // the chosen camera decides the aspect ratio before the size is known
-  if (!loaded.scene.cameras.empty() || !o.camera.empty()) {
-    probe = choose_camera(loaded.scene, o.camera, 16, 9);
-    scene_camera = &probe;
-  }
-  resolve_resolution(scene_camera, settings.width, settings.height);
-  if (static_cast<double>(settings.width) * settings.height > (1u << 28))
-    throw UsageError(fmt::format("--width {} --height {}: more than 268 million pixels", settings.width, settings.height));
-  const Camera camera = choose_camera(loaded.scene, o.camera, settings.width, settings.height);
-  settings.spp = o.spp;
-  settings.max_bounces = o.max_bounces;
-  settings.threads = o.threads;
-  settings.tile_size = o.tile_size;
-  settings.light_sampling = o.light_sampling == "bsdf"     ? LightSampling::BsdfOnly
-                            : o.light_sampling == "lights" ? LightSampling::LightsOnly
-                                                           : LightSampling::Mis;
-  settings.clamp = o.clamp;
-  settings.seed = static_cast<std::uint32_t>(o.seed);
-  settings.sampler = parse_sampler(o.sampler);
-  for (const std::string& a : o.aovs) {
-    settings.aovs.albedo |= a == "albedo";
-    settings.aovs.normal |= a == "normal";
-    settings.aovs.depth |= a == "depth";
-    settings.aovs.halves |= a == "halves";
-  }
-  settings.adaptive = {o.noise_threshold, o.min_spp};
-  if (o.min_spp > 0 && o.noise_threshold <= 0.0f) throw UsageError("--min-spp: needs --noise-threshold");
-  const bool cost_layer = std::find(o.aovs.begin(), o.aovs.end(), "cost") != o.aovs.end();
-  settings.scheduler = parse_scheduler(o.scheduler);
-  settings.tile_order = parse_tile_order(o.tile_order);
-  settings.record_tiles = profile_outputs.needs_tile_records();
-  settings.time_limit = o.time_limit;
-
-  EnvironmentParams env;
-  env.background = parse_background(o.background, scene_has_lights(loaded.scene));
-  env.image_path = o.envmap;
-  env.scale = o.envmap_scale;
-  env.rotate_degrees = o.envmap_rotate;
-  const std::uint64_t triangles_in_file = [&] {
-    std::uint64_t n = 0;
-    for (const Mesh& m : loaded.scene.meshes)
-      for (const TriangleMesh& p : m.primitives) n += p.triangle_count();
-    return n;
-  }();
-  check_render_memory(estimate_render_memory(loaded.scene, settings.width, settings.height, settings.aovs, o.envmap,
-                                             settings.adaptive.on()));
-  t0 = std::chrono::steady_clock::now();
-  RenderScene scene(std::move(loaded.scene), env);
-  const double setup_seconds = seconds_since(t0);
-
-  CameraParams cam_params{o.fov, o.aperture, o.focus_distance};
-  RenderCamera rc = make_camera(camera, settings.width, settings.height, cam_params);
-  if (o.aperture > 0.0f && o.focus_distance <= 0.0f) rc.focus_distance = autofocus_distance(scene, rc);
-
-  const std::string resume_text = resume_settings(o, settings, rc, env);
+  const std::string resume_text = resume_settings(o, settings, built.camera, plan.environment);
   FilmState resumed;
   if (!o.resume.empty()) {
     check_resume_settings(o.resume, resumed_settings, resume_text);
@@ -323,8 +200,9 @@ int run_render(const RenderOptions& o) {
       try {
         RenderStats at_checkpoint = stats;
         at_checkpoint.converged_pixels = film.converged_pixels();
-        write_outputs(output, o.preview, film.resolve(), write_params(o, settings, rc, camera, at_checkpoint, true),
-                      film.state(), resume_text);
+        FrameImage image = film.resolve();
+        finish_frame(plan, image, frame_write_params(o, plan, built.camera, at_checkpoint, true), film.state(),
+                     resume_text, false);
       } catch (const OutputError& e) {
         fmt::print(stderr, "tessera: warning: checkpoint not written: {}\n", e.what());
       }
@@ -339,21 +217,23 @@ int run_render(const RenderOptions& o) {
                                     ? static_cast<std::uint64_t>(settings.width) * settings.height * settings.spp
                                     : samples_left(resumed, settings.spp);
     ProgressDisplay progress(monitor, {total, o.quiet, "", false, settings.adaptive.on()});
-    result = render_frame(scene, rc, settings, &monitor, o.resume.empty() ? nullptr : &resumed);
+    result = render_frame(*built.scene, built.camera, settings, &monitor, o.resume.empty() ? nullptr : &resumed);
   }
-  if (cost_layer) result.image.cost = tile_cost_image(result.profile);
+  if (plan.cost_layer) result.image.cost = tile_cost_image(result.profile);
   write_profile_outputs(profile_outputs, result,
                         fmt::format("{}: {}, {}, {} threads", std::filesystem::path(o.scene_path).filename().string(),
                                     o.scheduler, o.tile_order, result.stats.threads));
+  double denoise_seconds = 0.0;
   if (result.image.samples_per_pixel > 0) {
     const bool partial = samples_left(result.film, settings.spp) > 0;  // done: converged, or at --spp
-    write_outputs(output, o.preview, result.image, write_params(o, settings, rc, camera, result.stats, partial),
-                  result.film, resume_text);
+    denoise_seconds = finish_frame(plan, result.image, frame_write_params(o, plan, built.camera, result.stats, partial),
+                                   result.film, resume_text, plan.denoise && !result.stats.cancelled);
   }
   if (!o.quiet) {
-    fmt::print(stderr, "tessera: {}: {} triangles; load {:.2f} s, BVH and textures {:.2f} s (BVH {:.2f} s), render {:.2f} s\n",
-               o.scene_path, triangles_in_file, load_seconds, setup_seconds, scene.bvh_build_seconds, result.stats.seconds);
-    print_summary(o, output, settings, result);
+    fmt::print(stderr, "tessera: {}: {} triangles; load {:.2f} s, BVH and textures {:.2f} s (BVH {:.2f} s), render {:.2f} s{}\n",
+               o.scene_path, triangles, load_seconds, built.seconds, built.scene->bvh_build_seconds, result.stats.seconds,
+               denoise_seconds > 0.0 ? fmt::format(", denoise {:.2f} s", denoise_seconds) : "");
+    print_summary(o, plan.output, settings, result);
   }
   return interrupts.interrupted() ? kExitInterrupted : kExitSuccess;
 }

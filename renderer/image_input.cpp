@@ -1,9 +1,14 @@
 #include "renderer/image_input.h"
 
+#include <algorithm>
+#include <set>
+
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
+
+#include "renderer/exr_layers.h"
 
 namespace tessera {
 
@@ -42,6 +47,26 @@ ExrChannels read_exr_channels(const std::string& path) {
   } catch (const std::exception& e) {
     throw ImageInputError(path + ": cannot be read as an OpenEXR image: " + e.what());
   }
+}
+
+FrameImage read_frame_exr(const std::string& path) { return frame_from_exr(read_exr_channels(path)); }
+
+FrameImage frame_from_exr(ExrChannels exr) {
+  FrameImage frame;
+  frame.width = exr.width, frame.height = exr.height;
+  std::set<std::string> used = {"A"};
+  for (const ExrLayer& layer : exr_layers()) {
+    frame.*layer.pixels = exr.interleave(layer.channels);
+    if (!(frame.*layer.pixels).empty()) used.insert(layer.channels.begin(), layer.channels.end());
+  }
+  if (exr.has(kSamplesChannel)) {
+    for (float n : exr.channels[kSamplesChannel]) frame.pixel_samples.push_back(static_cast<std::uint32_t>(n));
+    frame.samples_per_pixel = static_cast<int>(*std::min_element(frame.pixel_samples.begin(), frame.pixel_samples.end()));
+    used.insert(kSamplesChannel);
+  }
+  for (auto& [name, values] : exr.channels)
+    if (!used.count(name) && name.rfind("tessera.", 0) != 0) frame.extra_channels.emplace_back(name, std::move(values));
+  return frame;
 }
 
 }  // namespace tessera

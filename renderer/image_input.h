@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "renderer/film.h"
+
 namespace tessera {
 
 // The file cannot be read as an EXR, or lacks what the caller needs: bad input (exit 2).
@@ -27,5 +29,12 @@ struct ExrChannels {
 // Every channel of the first part of `path`'s data window. Throws ImageInputError naming the
 // file when it cannot be read.
 ExrChannels read_exr_channels(const std::string& path);
+
+// A frame tessera wrote, read back: every layer of renderer/exr_layers.h that the file has
+// complete, the per-pixel sample counts, and any other channel in extra_channels (but A and
+// the `tessera.` resume layers). samples_per_pixel is the fewest count, when counts are there.
+// Throws ImageInputError as read_exr_channels does.
+FrameImage read_frame_exr(const std::string& path);
+FrameImage frame_from_exr(ExrChannels exr);
 
 }  // namespace tessera

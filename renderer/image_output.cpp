@@ -21,6 +21,7 @@
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
+#include "renderer/exr_layers.h"
 #include "renderer/file_output.h"
 #include "renderer/resume_layers.h"
 #include "renderer/texture.h"
@@ -72,21 +73,6 @@ void add_channels(std::vector<ChannelData>& out, const std::vector<float>& src, 
   }
 }
 
-// The halves AOV's layers, named as the denoiser reads them, and the per-pixel counts.
-void add_halves(std::vector<ChannelData>& channels, const FrameImage& img) {
-  auto add = [&](const std::vector<float>& v, const std::string& layer, const char* a, const char* b, const char* c) {
-    if (!v.empty()) add_channels(channels, v, 3, {layer + a, layer + b, layer + c});
-  };
-  add(img.rgb_even, "even.", "R", "G", "B");
-  add(img.rgb_odd, "odd.", "R", "G", "B");
-  add(img.albedo_even, "even.Albedo.", "R", "G", "B");
-  add(img.albedo_odd, "odd.Albedo.", "R", "G", "B");
-  add(img.normal_even, "even.N.", "X", "Y", "Z");
-  add(img.normal_odd, "odd.N.", "X", "Y", "Z");
-  if (!img.pixel_samples.empty())  // a float holds every count up to 2^24 (--spp's limit) exactly
-    add_channels(channels, std::vector<float>(img.pixel_samples.begin(), img.pixel_samples.end()), 1, {"spp"});
-}
-
 // Every attribute of `source`'s header but its layout, which is the new file's own.
 void copy_attributes(const std::string& source, Imf::Header& header) {
   static const std::set<std::string> kLayout = {"channels", "compression", "dataWindow", "displayWindow", "lineOrder",
@@ -100,14 +86,13 @@ void copy_attributes(const std::string& source, Imf::Header& header) {
 
 std::vector<ChannelData> exr_channels(const FrameImage& img) {
   std::vector<ChannelData> channels;
-  add_channels(channels, img.rgb, 3, {"R", "G", "B"});
+  for (const ExrLayer& layer : exr_layers()) {
+    const std::vector<float>& pixels = img.*layer.pixels;
+    if (!pixels.empty()) add_channels(channels, pixels, static_cast<int>(layer.channels.size()), layer.channels);
+  }
   channels.push_back({"A", std::vector<float>(static_cast<std::size_t>(img.width) * img.height, 1.0f), {}});
-  if (!img.albedo.empty()) add_channels(channels, img.albedo, 3, {"Albedo.R", "Albedo.G", "Albedo.B"});
-  if (!img.normal.empty()) add_channels(channels, img.normal, 3, {"N.X", "N.Y", "N.Z"});
-  if (!img.depth.empty()) add_channels(channels, img.depth, 1, {"Z"});
-  if (!img.cost.empty()) add_channels(channels, img.cost, 1, {"cost.time"});
-  if (!img.noisy_rgb.empty()) add_channels(channels, img.noisy_rgb, 3, {"noisy.R", "noisy.G", "noisy.B"});
-  add_halves(channels, img);
+  if (!img.pixel_samples.empty())
+    add_channels(channels, std::vector<float>(img.pixel_samples.begin(), img.pixel_samples.end()), 1, {kSamplesChannel});
   for (const auto& [name, values] : img.extra_channels) add_channels(channels, values, 1, {name});
   return channels;
 }
@@ -134,6 +119,7 @@ void write_exr(const std::string& path, const FrameImage& img, const ImageWriteP
     header.insert("minSamplesPerPixel", Imf::IntAttribute(m.min_spp));
     header.insert("convergedPixels", Imf::DoubleAttribute(static_cast<double>(m.converged_pixels)));
   }
+  if (m.denoised) header.insert("denoised", Imf::IntAttribute(1));
   header.insert("software", Imf::StringAttribute("tessera " + tessera_version()));
   header.insert("tesseraVersion", Imf::StringAttribute(tessera_version()));
   if (!m.scene_path.empty()) header.insert("scene", Imf::StringAttribute(m.scene_path));
@@ -217,6 +203,8 @@ std::vector<std::uint8_t> to_display_rgb8(const FrameImage& image, float exposur
   return out;
 }
 
+bool is_exr_path(const std::string& path) { return lower_extension(path) == ".exr"; }
+
 void check_output_path(const std::string& path) {
   check_writable_path(path);  // first: "-o /dev/full" is a device, whatever its extension
   const std::string ext = lower_extension(path);
@@ -229,7 +217,7 @@ void check_output_path(const std::string& path) {
 void write_image(const std::string& path, const FrameImage& image, const ImageWriteParams& params) {
   check_output_path(path);
   write_file_atomically(path, [&](const std::string& tmp) {
-    if (lower_extension(path) == ".exr") write_exr(tmp, image, params);
+    if (is_exr_path(path)) write_exr(tmp, image, params);
     else write_oiio(tmp, image, params);
   });
 }

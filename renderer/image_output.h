@@ -40,6 +40,7 @@ struct FrameMetadata {
   float noise_threshold = 0.0f;  // adaptive sampling (0: off, not written)
   int min_spp = 0;  // adaptive sampling: the minimum in effect
   std::uint64_t converged_pixels = 0;  // adaptive sampling: pixels stopped before target_spp
+  bool denoised = false;  // RGB is denoised; noisy.R/G/B holds the beauty as rendered
 };
 
 struct ImageWriteParams {
@@ -58,6 +59,9 @@ struct ImageWriteParams {
 // Throws OutputPathError when `path` cannot be written: unknown format, missing or read-only
 // directory, a directory in the way. Call it before rendering.
 void check_output_path(const std::string& path);
+
+// True when `path` names an OpenEXR file (by its extension, in any case).
+bool is_exr_path(const std::string& path);
 
 // Writes `image` to `path`, choosing the format by extension. Throws OutputError.
 void write_image(const std::string& path, const FrameImage& image, const ImageWriteParams& params);

@@ -11,11 +11,14 @@
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfStringAttribute.h>
 
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <random>
 #include <string>
 #include <vector>
+
+#include <fmt/format.h>
 
 #include "denoiser/denoise.h"
 #include "tests/test_support.h"
@@ -103,8 +106,8 @@ TEST(DenoiseCli, MissingChannelsExit2NamingFileAndChannels) {
   write_exr(in, ch);
   const auto r = tessera("denoise '" + in + "' -o '" + out + "'");
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_EQ(r.err, "tessera: error: " + in + ": cannot be denoised: missing channels odd.R, odd.G, odd.B, N.Y "
-                   "(render it with the half buffers and --aov albedo,normal)\n");
+  EXPECT_EQ(r.err, "tessera: error: " + in + ": cannot be denoised: missing channels N.Y, odd.R, odd.G, odd.B "
+                   "(render it with --denoise, or with --aov halves,albedo,normal)\n");
   EXPECT_FALSE(fs::exists(out));
 }
 
@@ -151,6 +154,31 @@ TEST(DenoiseCli, RoundTripWritesDenoisedNoisyAndCarriesEverythingOver) {
     }
   EXPECT_EQ(header.typedAttribute<Imf::IntAttribute>("samplesPerPixel").value(), 8);
   EXPECT_EQ(header.typedAttribute<Imf::StringAttribute>("scene").value(), "synthetic");
+}
+
+// `render --denoise` and `tessera denoise` on a render with the same buffers are one
+// operation: the same denoised bits, and the noisy beauty is the plain render's, bit for bit
+// (denoising adds layers, it never changes the samples).
+TEST(DenoiseCli, RenderDenoiseEqualsDenoisingTheRenderedFile) {
+  const std::string dir = test::make_temp_dir("denoise-render");
+  const std::string scene = test::scene_path("cornell-box/cornell-box.gltf");
+  const std::string common = fmt::format(" --width {} --height {} --spp 8 --seed 3 -q", kW, kH);
+  ASSERT_EQ(tessera("render '" + scene + "' -o '" + dir + "/plain.exr'" + common).exit_code, 0);
+  ASSERT_EQ(tessera("render '" + scene + "' -o '" + dir + "/buffers.exr' --aov halves,albedo,normal" + common).exit_code, 0);
+  const auto r = tessera("render '" + scene + "' -o '" + dir + "/denoised.exr' --denoise" + common);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_EQ(tessera("denoise '" + dir + "/buffers.exr' -o '" + dir + "/afterwards.exr' -q").exit_code, 0);
+  Imf::Header header;
+  const Channels denoised = read_exr(dir + "/denoised.exr", &header), afterwards = read_exr(dir + "/afterwards.exr");
+  const Channels plain = read_exr(dir + "/plain.exr");
+  for (const char* c : {"R", "G", "B"}) {
+    EXPECT_EQ(denoised.at(c), afterwards.at(c)) << c;
+    EXPECT_EQ(denoised.at(std::string("noisy.") + c), plain.at(c)) << c;
+    EXPECT_NE(denoised.at(c), plain.at(c)) << c;
+    for (float v : denoised.at(c)) ASSERT_TRUE(std::isfinite(v) && v >= 0.0f);
+  }
+  EXPECT_EQ(header.typedAttribute<Imf::IntAttribute>("denoised").value(), 1);
+  for (const char* c : {"even.R", "odd.R", "Albedo.G", "N.Z", "spp"}) EXPECT_EQ(denoised.count(c), 1u) << c;
 }
 
 }  // namespace

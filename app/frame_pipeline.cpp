@@ -1,0 +1,176 @@
+#include "app/frame_pipeline.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+
+#include <fmt/format.h>
+
+#include "app/exit_codes.h"
+#include "app/frame_denoise.h"
+#include "app/memory_check.h"
+#include "app/render_setup.h"
+#include "renderer/adaptive_sampling.h"
+
+namespace tessera {
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+vec3 parse_background(const std::string& text, bool scene_has_lights) {
+  if (text == "auto") return vec3(scene_has_lights ? 0.0f : 1.0f);
+  vec3 c;
+  char tail;
+  const int n = std::sscanf(text.c_str(), "%f,%f,%f%c", &c.r, &c.g, &c.b, &tail);
+  if (n == 1) c = vec3(c.r);
+  else if (n != 3) throw UsageError("--background " + text + ": expected R,G,B (three numbers), one number, or auto");
+  if (!is_finite(c) || glm::any(glm::lessThan(c, vec3(0.0f))))
+    throw UsageError("--background " + text + ": values must be finite and not negative");
+  return c;
+}
+
+// Width, height and the camera: the chosen camera decides the aspect ratio before the size
+// is known.
+void plan_image(const RenderOptions& o, const SceneDescription& scene, FramePlan& plan) {
+  RenderSettings& s = plan.settings;
+  s.width = o.width;
+  s.height = o.height;
+  const Camera* scene_camera = nullptr;
+  Camera probe;
+  if (!scene.cameras.empty() || !o.camera.empty()) {
+    probe = choose_camera(scene, o.camera, 16, 9);
+    scene_camera = &probe;
+  }
+  resolve_resolution(scene_camera, s.width, s.height);
+  if (static_cast<double>(s.width) * s.height > (1u << 28))
+    throw UsageError(fmt::format("--width {} --height {}: more than 268 million pixels", s.width, s.height));
+  plan.camera = choose_camera(scene, o.camera, s.width, s.height);
+  plan.camera_params = {o.fov, o.aperture, o.focus_distance};
+}
+
+void plan_sampling(const RenderOptions& o, RenderSettings& s) {
+  s.spp = o.spp;
+  s.max_bounces = o.max_bounces;
+  s.threads = o.threads;
+  s.tile_size = o.tile_size;
+  s.light_sampling = o.light_sampling == "bsdf"     ? LightSampling::BsdfOnly
+                     : o.light_sampling == "lights" ? LightSampling::LightsOnly
+                                                    : LightSampling::Mis;
+  s.clamp = o.clamp;
+  s.seed = static_cast<std::uint32_t>(o.seed);
+  s.sampler = parse_sampler(o.sampler);
+  s.adaptive = {o.noise_threshold, o.min_spp};
+  if (o.min_spp > 0 && o.noise_threshold <= 0.0f) throw UsageError("--min-spp: needs --noise-threshold");
+  s.scheduler = parse_scheduler(o.scheduler);
+  s.tile_order = parse_tile_order(o.tile_order);
+  s.record_tiles = !o.stats_json.empty() || !o.trace.empty() || !o.heatmap.empty();
+  s.time_limit = o.time_limit;
+}
+
+}  // namespace
+
+std::string frame_output_path(const RenderOptions& o) {
+  if (!o.output.empty()) return o.output;
+  if (!o.resume.empty()) return o.resume;
+  return std::filesystem::path(o.scene_path).stem().string() + ".exr";
+}
+
+LoadedScene load_scene(const RenderOptions& o) {
+  const auto start = std::chrono::steady_clock::now();
+  LoadedScene loaded{load_gltf(o.scene_path, {o.scene})};
+  for (const std::string& w : loaded.gltf.warnings) fmt::print(stderr, "tessera: warning: {}: {}\n", o.scene_path, w);
+  for (const Mesh& m : loaded.gltf.scene.meshes)
+    for (const TriangleMesh& p : m.primitives) loaded.triangles += p.triangle_count();
+  loaded.seconds = seconds_since(start);
+  return loaded;
+}
+
+FramePlan plan_frame(const RenderOptions& o, const SceneDescription& scene) {
+  FramePlan plan;
+  plan.output = frame_output_path(o);
+  plan.preview = o.preview;
+  plan_image(o, scene, plan);
+  plan_sampling(o, plan.settings);
+  AovSelection& aovs = plan.settings.aovs;
+  for (const std::string& a : o.aovs) {
+    aovs.albedo |= a == "albedo";
+    aovs.normal |= a == "normal";
+    aovs.depth |= a == "depth";
+    aovs.halves |= a == "halves";
+  }
+  plan.cost_layer = std::find(o.aovs.begin(), o.aovs.end(), "cost") != o.aovs.end();
+  plan.denoise = o.denoise;
+  if (o.denoise) aovs.albedo = aovs.normal = aovs.halves = true;  // what the denoiser reads
+  plan.environment.background = parse_background(o.background, scene_has_lights(scene));
+  plan.environment.image_path = o.envmap;
+  plan.environment.scale = o.envmap_scale;
+  plan.environment.rotate_degrees = o.envmap_rotate;
+  const RenderSettings& s = plan.settings;
+  check_render_memory(estimate_render_memory(scene, s.width, s.height, s.aovs, o.envmap, s.adaptive.on()));
+  return plan;
+}
+
+BuiltFrame build_frame(LoadedScene loaded, const FramePlan& plan) {
+  const auto start = std::chrono::steady_clock::now();
+  BuiltFrame built;
+  built.scene = std::make_unique<RenderScene>(std::move(loaded.gltf.scene), plan.environment);
+  built.seconds = seconds_since(start);
+  const RenderSettings& s = plan.settings;
+  built.camera = make_camera(plan.camera, s.width, s.height, plan.camera_params);
+  if (plan.camera_params.aperture > 0.0f && plan.camera_params.focus_distance <= 0.0f)
+    built.camera.focus_distance = autofocus_distance(*built.scene, built.camera);
+  return built;
+}
+
+ImageWriteParams frame_write_params(const RenderOptions& o, const FramePlan& plan, const RenderCamera& camera,
+                                    const RenderStats& stats, bool partial) {
+  const RenderSettings& settings = plan.settings;
+  ImageWriteParams write;
+  write.half = o.half;
+  write.exposure = o.exposure;
+  FrameMetadata& meta = write.metadata;
+  meta.render_seconds = stats.seconds;
+  meta.seed = settings.seed;
+  meta.sampler = sampler_name(settings.sampler);
+  meta.threads = stats.threads;
+  meta.tile_size = settings.tile_size;
+  meta.max_bounces = settings.max_bounces;
+  meta.dropped_samples = stats.dropped_samples;
+  meta.world_to_camera = camera.world_to_camera();
+  meta.world_to_ndc = camera.world_to_ndc();
+  meta.scene_path = o.scene_path;
+  meta.camera_name = plan.camera.name;
+  meta.partial = partial;
+  meta.target_spp = settings.spp;
+  if (settings.adaptive.on()) {
+    meta.noise_threshold = settings.adaptive.threshold;
+    meta.min_spp = adaptive_min_spp(settings.adaptive, settings.spp);
+    meta.converged_pixels = stats.converged_pixels;
+  }
+  return write;
+}
+
+double finish_frame(const FramePlan& plan, FrameImage& image, ImageWriteParams params, const FilmState& film,
+                    const std::string& resume_text, bool denoise) {
+  double seconds = 0.0;
+  if (denoise) {
+    DenoiseParams denoise_params;
+    denoise_params.threads = plan.settings.threads;
+    seconds = denoise_frame(image, denoise_params);
+    params.metadata.denoised = true;
+  }
+  if (params.metadata.partial && is_exr_path(plan.output)) {
+    params.resume_film = &film;
+    params.resume_settings = resume_text;
+  }
+  write_image(plan.output, image, params);
+  params.resume_film = nullptr;
+  if (!plan.preview.empty()) write_image(plan.preview, image, params);
+  return seconds;
+}
+
+}  // namespace tessera

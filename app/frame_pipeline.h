@@ -1,0 +1,62 @@
+// The pipeline every frame runs: load the glTF, plan the frame (size, camera, settings,
+// environment), build the render scene, render it (resuming, checkpointing), denoise, write.
+// `tessera render` runs it once; a frame sequence or an MPI rank runs the same stages, each
+// as often as it needs (the scene loaded once, frames planned, built and written many times).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "app/commands.h"
+#include "renderer/camera.h"
+#include "renderer/image_output.h"
+#include "renderer/render.h"
+#include "scene_io/gltf_loader.h"
+
+namespace tessera {
+
+// Where -o goes: the option, else the resumed file, else SCENE_NAME.exr in the current directory.
+std::string frame_output_path(const RenderOptions& o);
+
+// Stage 1: the file, with its warnings printed.
+struct LoadedScene {
+  GltfLoadResult gltf;
+  double seconds = 0.0;
+  std::uint64_t triangles = 0;  // in the file's meshes, each counted once
+};
+LoadedScene load_scene(const RenderOptions& o);
+
+// Stage 2: everything decided from the options and the scene before anything is built.
+// Throws UsageError for options the scene cannot satisfy.
+struct FramePlan {
+  RenderSettings settings;
+  Camera camera;
+  CameraParams camera_params;
+  EnvironmentParams environment;
+  std::string output, preview;  // checked writable
+  bool cost_layer = false;  // --aov cost: CPU time per tile, from the profile
+  bool denoise = false;  // --denoise: the settings carry the half buffers and features it needs
+};
+FramePlan plan_frame(const RenderOptions& o, const SceneDescription& scene);
+
+// Stage 3: the BVH, textures and lights (the description is moved in), and the camera.
+struct BuiltFrame {
+  std::unique_ptr<RenderScene> scene;
+  RenderCamera camera;
+  double seconds = 0.0;
+};
+BuiltFrame build_frame(LoadedScene loaded, const FramePlan& plan);
+
+// The EXR header and write options of a frame rendered with `plan`; `partial`: some pixel is
+// neither converged nor at --spp.
+ImageWriteParams frame_write_params(const RenderOptions& o, const FramePlan& plan, const RenderCamera& camera,
+                                    const RenderStats& stats, bool partial);
+
+// Stage 5 and 6: denoises a finished (not interrupted) frame when planned, then writes -o and
+// --preview; a partial EXR also carries the film and settings to resume from. Returns the
+// seconds spent denoising (0: not denoised).
+double finish_frame(const FramePlan& plan, FrameImage& image, ImageWriteParams params, const FilmState& film,
+                    const std::string& resume_text, bool denoise);
+
+}  // namespace tessera
