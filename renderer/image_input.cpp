@@ -9,6 +9,7 @@
 #include <OpenEXR/ImfInputFile.h>
 
 #include "renderer/exr_layers.h"
+#include "renderer/image_output.h"
 
 namespace tessera {
 
@@ -24,6 +25,7 @@ std::vector<float> ExrChannels::interleave(const std::vector<std::string>& names
 }
 
 ExrChannels read_exr_channels(const std::string& path) {
+  enable_exr_threads();
   try {
     Imf::InputFile file(path.c_str());
     const Imath::Box2i window = file.header().dataWindow();

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <optional>
+#include <thread>
 #include <set>
 
 #include <Imath/half.h>
@@ -18,6 +19,7 @@
 #include <OpenEXR/ImfMatrixAttribute.h>
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfStringAttribute.h>
+#include <OpenEXR/ImfThreading.h>
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
@@ -98,6 +100,7 @@ std::vector<ChannelData> exr_channels(const FrameImage& img) {
 }
 
 void write_exr(const std::string& path, const FrameImage& img, const ImageWriteParams& params) {
+  enable_exr_threads();
   std::vector<ChannelData> channels = exr_channels(img);
   const FrameMetadata& m = params.metadata;
   Imf::Header header(img.width, img.height);
@@ -201,6 +204,14 @@ std::vector<std::uint8_t> to_display_rgb8(const FrameImage& image, float exposur
     out[i] = static_cast<std::uint8_t>(s * 255.0f + 0.5f);
   }
   return out;
+}
+
+void enable_exr_threads() {
+  static const bool once = [] {
+    Imf::setGlobalThreadCount(static_cast<int>(std::max(1u, std::thread::hardware_concurrency())));
+    return true;
+  }();
+  (void)once;
 }
 
 bool is_exr_path(const std::string& path) { return lower_extension(path) == ".exr"; }

@@ -75,4 +75,8 @@ std::vector<std::uint8_t> to_display_rgb8(const FrameImage& image, float exposur
 
 std::string tessera_version();
 
+// Lets OpenEXR compress and decompress scanline blocks on every core (once per process): a
+// 1080p frame with its layers is over 100 MB of floats, slow to ZIP on one.
+void enable_exr_threads();
+
 }  // namespace tessera

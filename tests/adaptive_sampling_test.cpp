@@ -7,13 +7,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstring>
 
 #include "renderer/adaptive_sampling.h"
 #include "renderer/image_output.h"
 #include "renderer/render.h"
 #include "renderer/resume_layers.h"
 #include "tests/scene_builders.h"
+#include "tests/same_bits.h"
 #include "tests/test_support.h"
 
 namespace tessera {
@@ -55,20 +55,8 @@ const RenderCamera& camera() {
   return cam;
 }
 
-template <typename T>
-bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
-}
-
-void expect_same_film(const FilmState& a, const FilmState& b) {
-  EXPECT_TRUE(same_bits(a.radiance, b.radiance));
-  EXPECT_TRUE(same_bits(a.radiance_odd, b.radiance_odd));
-  EXPECT_TRUE(same_bits(a.albedo_odd, b.albedo_odd));
-  EXPECT_TRUE(same_bits(a.normal_odd, b.normal_odd));
-  EXPECT_TRUE(same_bits(a.samples, b.samples));
-  EXPECT_TRUE(same_bits(a.converged, b.converged));
-  EXPECT_EQ(a.checked_at, b.checked_at);
-}
+using test::expect_same_film;
+using test::same_bits;
 
 // The render the other tests compare with: threads and tiles vary, the bits must not.
 const RenderResult& adaptive_render() {

@@ -2,11 +2,11 @@
 // count or the tile size. Bit for bit.
 #include <gtest/gtest.h>
 
-#include <cstring>
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "renderer/render.h"
+#include "tests/same_bits.h"
 #include "tests/scene_builders.h"
 
 namespace tessera {
@@ -52,29 +52,18 @@ FrameImage render_with(int threads, int tile_size) {
   return render_frame(room(), cam, s).image;
 }
 
-bool identical(const std::vector<float>& a, const std::vector<float>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
-}
-
-void expect_identical(const FrameImage& a, const FrameImage& b) {
-  EXPECT_TRUE(identical(a.rgb, b.rgb));
-  EXPECT_TRUE(identical(a.albedo, b.albedo));
-  EXPECT_TRUE(identical(a.normal, b.normal));
-  EXPECT_TRUE(identical(a.depth, b.depth));
-}
-
 TEST(RenderDeterminism, OneThreadAndTwoThreadsGiveTheSameBits) {
-  expect_identical(render_with(1, 32), render_with(2, 32));
+  test::expect_same_image(render_with(1, 32), render_with(2, 32));
 }
 
 TEST(RenderDeterminism, TileSize8And64GiveTheSameBits) {
-  expect_identical(render_with(2, 8), render_with(2, 64));
+  test::expect_same_image(render_with(2, 8), render_with(2, 64));
 }
 
 TEST(RenderDeterminism, ADifferentSeedGivesADifferentImage) {
   FrameImage a = render_with(2, 16);
   RenderSettings s;
-  EXPECT_FALSE(identical(a.rgb, std::vector<float>(a.rgb.size(), 0.0f)));  // something was lit
+  EXPECT_FALSE(test::same_bits(a.rgb, std::vector<float>(a.rgb.size(), 0.0f)));  // something was lit
   // Same settings but another seed must change the noise.
   s.width = 61;
   s.height = 47;
@@ -82,7 +71,7 @@ TEST(RenderDeterminism, ADifferentSeedGivesADifferentImage) {
   s.max_bounces = 12;
   s.seed = 4321;
   const RenderCamera cam = make_camera(test::look_at({0, 0, 3}, {0, 0, 0}, 45.0f), s.width, s.height, {0.0f, 0.05f, 3.0f});
-  EXPECT_FALSE(identical(a.rgb, render_frame(room(), cam, s).image.rgb));
+  EXPECT_FALSE(test::same_bits(a.rgb, render_frame(room(), cam, s).image.rgb));
 }
 
 }  // namespace

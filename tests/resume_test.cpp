@@ -3,12 +3,12 @@
 // the EXR that carries the film. Time limits and checkpoints stop and report where expected.
 #include <gtest/gtest.h>
 
-#include <cstring>
 
 #include "renderer/image_output.h"
 #include "renderer/render.h"
 #include "renderer/resume_layers.h"
 #include "tests/scene_builders.h"
+#include "tests/same_bits.h"
 #include "tests/test_support.h"
 
 namespace tessera {
@@ -59,28 +59,9 @@ std::vector<FilmState> checkpoints_of(RenderSettings s) {
   return states;
 }
 
-template <typename T>
-bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
-}
-
-void expect_same_film(const FilmState& a, const FilmState& b) {
-  EXPECT_TRUE(same_bits(a.radiance, b.radiance));
-  EXPECT_TRUE(same_bits(a.albedo, b.albedo));
-  EXPECT_TRUE(same_bits(a.normal, b.normal));
-  EXPECT_TRUE(same_bits(a.depth, b.depth));
-  EXPECT_TRUE(same_bits(a.samples, b.samples));
-  EXPECT_TRUE(same_bits(a.hits, b.hits));
-  EXPECT_EQ(a.dropped, b.dropped);
-}
-
-void expect_same_image(const FrameImage& a, const FrameImage& b) {
-  EXPECT_EQ(a.samples_per_pixel, b.samples_per_pixel);
-  EXPECT_TRUE(same_bits(a.rgb, b.rgb));
-  EXPECT_TRUE(same_bits(a.albedo, b.albedo));
-  EXPECT_TRUE(same_bits(a.normal, b.normal));
-  EXPECT_TRUE(same_bits(a.depth, b.depth));
-}
+using test::expect_same_film;
+using test::expect_same_image;
+using test::same_bits;
 
 TEST(Resume, FromAWaveBoundaryGivesTheSameBits) {
   const RenderResult whole = render_frame(scene(), camera(), settings());

@@ -9,14 +9,13 @@
 #include <numeric>
 
 #include "renderer/schedulers.h"
+#include "tests/same_bits.h"
 #include "tests/schedule_fixture.h"
 
 namespace tessera {
 namespace {
 
-bool same_bits(const std::vector<float>& a, const std::vector<float>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
-}
+using test::same_bits;
 
 std::string describe(const test::ScheduleCase& c) {
   return std::string(scheduler_name(c.scheduler)) + "/" + tile_order_name(c.order) + "/" + std::to_string(c.threads) +
