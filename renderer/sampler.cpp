@@ -1,7 +1,6 @@
 #include "renderer/sampler.h"
 
-#include <algorithm>
-#include <stdexcept>
+#include "renderer/named_enum.h"
 
 namespace tessera {
 
@@ -10,13 +9,8 @@ const std::vector<std::string>& sampler_names() {
   return names;
 }
 
-const char* sampler_name(SamplerKind kind) { return sampler_names()[static_cast<int>(kind)].c_str(); }
+const char* sampler_name(SamplerKind kind) { return enum_name(sampler_names(), kind); }
 
-SamplerKind parse_sampler(const std::string& name) {
-  const auto& names = sampler_names();
-  const auto it = std::find(names.begin(), names.end(), name);
-  if (it == names.end()) throw std::invalid_argument("unknown sampler '" + name + "'");
-  return static_cast<SamplerKind>(it - names.begin());
-}
+SamplerKind parse_sampler(const std::string& name) { return parse_enum<SamplerKind>(sampler_names(), name, "sampler"); }
 
 }  // namespace tessera

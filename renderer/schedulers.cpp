@@ -13,6 +13,8 @@
 #include <tbb/partitioner.h>
 #include <tbb/task_arena.h>
 
+#include "renderer/named_enum.h"
+
 namespace tessera {
 
 const std::vector<std::string>& scheduler_names() {
@@ -20,13 +22,10 @@ const std::vector<std::string>& scheduler_names() {
   return names;
 }
 
-const char* scheduler_name(SchedulerKind kind) { return scheduler_names()[static_cast<int>(kind)].c_str(); }
+const char* scheduler_name(SchedulerKind kind) { return enum_name(scheduler_names(), kind); }
 
 SchedulerKind parse_scheduler(const std::string& name) {
-  const auto& names = scheduler_names();
-  const auto it = std::find(names.begin(), names.end(), name);
-  if (it == names.end()) throw std::invalid_argument("unknown scheduler '" + name + "'");
-  return static_cast<SchedulerKind>(it - names.begin());
+  return parse_enum<SchedulerKind>(scheduler_names(), name, "scheduler");
 }
 
 std::vector<int> chunk_rows(int height, int threads) {

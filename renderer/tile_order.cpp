@@ -4,6 +4,8 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "renderer/named_enum.h"
+
 namespace tessera {
 
 TileGrid tile_grid(int width, int height, int tile_size) {
@@ -79,15 +81,8 @@ const std::vector<std::string>& tile_order_names() {
   return names;
 }
 
-const char* tile_order_name(TileOrder order) {
-  return tile_order_names()[static_cast<int>(order)].c_str();
-}
+const char* tile_order_name(TileOrder order) { return enum_name(tile_order_names(), order); }
 
-TileOrder parse_tile_order(const std::string& name) {
-  const auto& names = tile_order_names();
-  const auto it = std::find(names.begin(), names.end(), name);
-  if (it == names.end()) throw std::invalid_argument("unknown tile order '" + name + "'");
-  return static_cast<TileOrder>(it - names.begin());
-}
+TileOrder parse_tile_order(const std::string& name) { return parse_enum<TileOrder>(tile_order_names(), name, "tile order"); }
 
 }  // namespace tessera
