@@ -116,11 +116,8 @@ TEST(RenderClosedForm, SingleSidedEmitterIsDarkFromBehind) {
   }
 }
 
-// A diffuse floor under a square emitter of radiance Le (half side a, height h, facing
-// down): the point below the emitter's centre receives E = Le * pi * 4 F(a/h, a/h), with F
-// the corner form factor of a parallel rectangle (Howell's catalogue, C-11):
-// F(X, Y) = 1/(2 pi) [X/sqrt(1+X^2) atan(Y/sqrt(1+X^2)) + Y/sqrt(1+Y^2) atan(X/sqrt(1+Y^2))].
-// Its radiance is albedo/pi * E. One bounce, black background: direct light only, found by
+// A diffuse floor under a square emitter against the parallel-rectangle form factor
+// (test::floor_under_square_emitter). One bounce, black background: direct light only, found by
 // light sampling and BSDF sampling together (MIS).
 TEST(RenderClosedForm, FloorUnderASquareEmitterMatchesTheFormFactor) {
   const float a = 0.25f, h = 1.0f, le = 4.0f, albedo = 0.5f;
@@ -132,11 +129,7 @@ TEST(RenderClosedForm, FloorUnderASquareEmitterMatchesTheFormFactor) {
   s.spp = 4096;
   s.max_bounces = 1;
   const RenderResult r = render(scene, test::look_at({0, 0.5f, 3}, {0, 0, 0}, 0.1f), s, vec3(0));
-  auto corner = [](double x, double y) {
-    return (x / std::sqrt(1 + x * x) * std::atan(y / std::sqrt(1 + x * x)) +
-            y / std::sqrt(1 + y * y) * std::atan(x / std::sqrt(1 + y * y))) / (2 * M_PI);
-  };
-  const double expected = albedo * le * 4 * corner(a / h, a / h);  // albedo/pi * Le * pi * 4F
+  const double expected = test::floor_under_square_emitter(a, h, le, albedo);
   // Over the 25 pixels the footprint is < 2 mm wide: the irradiance is flat to 1e-5 there.
   const PixelStats st = stats_of(r.image);
   const double stderr_pixel = std::sqrt(st.variance + 1e-12);  // spread between pixels = per-pixel noise

@@ -20,16 +20,6 @@ namespace {
 using test::add_material;
 using test::add_mesh;
 
-// Howell's corner form factor of a parallel rectangle (catalogue C-11), as in
-// render_closed_form_test.cpp: the radiance of the floor below the emitter's centre.
-double floor_radiance(double a, double h, double le, double albedo) {
-  auto corner = [](double x, double y) {
-    return (x / std::sqrt(1 + x * x) * std::atan(y / std::sqrt(1 + x * x)) +
-            y / std::sqrt(1 + y * y) * std::atan(x / std::sqrt(1 + y * y))) / (2 * M_PI);
-  };
-  return albedo * le * 4 * corner(a / h, a / h);
-}
-
 double error_slope(SamplerKind sampler) {
   const float a = 0.25f, h = 1.0f, le = 4.0f, albedo = 0.5f;
   SceneDescription scene;
@@ -38,7 +28,7 @@ double error_slope(SamplerKind sampler) {
   EnvironmentParams env;
   env.background = vec3(0.0f);
   const RenderScene rs(std::move(scene), env);
-  const double expected = floor_radiance(a, h, le, albedo);
+  const double expected = test::floor_under_square_emitter(a, h, le, albedo);
   std::vector<double> log_n, log_e;
   for (int spp = 16; spp <= 1024; spp *= 4) {
     RenderSettings s;

@@ -94,4 +94,12 @@ Camera look_at(glm::vec3 eye, glm::vec3 target, float yfov_degrees) {
   return c;
 }
 
+double floor_under_square_emitter(double a, double h, double le, double albedo) {
+  auto corner = [](double x, double y) {
+    return (x / std::sqrt(1 + x * x) * std::atan(y / std::sqrt(1 + x * x)) +
+            y / std::sqrt(1 + y * y) * std::atan(x / std::sqrt(1 + y * y))) / (2 * M_PI);
+  };
+  return albedo * le * 4 * corner(a / h, a / h);
+}
+
 }  // namespace tessera::test

@@ -24,4 +24,11 @@ Material emitter(glm::vec3 radiance);  // black diffuse that emits `radiance`
 // A perspective camera at `eye` looking at `target` with +Y up.
 Camera look_at(glm::vec3 eye, glm::vec3 target, float yfov_degrees);
 
+// A diffuse floor of `albedo` under a square emitter of radiance `le` (half side a, height
+// h, facing down): the radiance of the point below the emitter's centre, albedo/pi * Le * pi
+// * 4 F(a/h, a/h), with F the corner form factor of a parallel rectangle (Howell's
+// catalogue, C-11): F(X, Y) = 1/(2 pi) [X/sqrt(1+X^2) atan(Y/sqrt(1+X^2)) + Y/sqrt(1+Y^2)
+// atan(X/sqrt(1+Y^2))].
+double floor_under_square_emitter(double a, double h, double le, double albedo);
+
 }  // namespace tessera::test
