@@ -1,6 +1,7 @@
 #include "tests/scene_builders.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 #include <glm/gtc/matrix_transform.hpp>
