@@ -30,17 +30,26 @@ std::vector<std::uint8_t> detect_outliers(const Planes& self, const Planes& othe
     float values[(2 * r + 1) * (2 * r + 1)];
     for (int y = rows.begin(); y < rows.end(); ++y)
       for (int x = 0; x < w; ++x) {
-        int n = 0;  // the window clipped to the image, centre included (as Cycles)
+        const std::size_t i = static_cast<std::size_t>(y) * w + x;
+        const float l = ls[i], half_l = 0.5f * l;
+        // l > 2 values[k] (k-th smallest) exactly when more than k values are below l / 2: a
+        // count first (branch-free, cheap), the percentile itself only for the few candidates.
+        int n = 0, below = 0;  // the window clipped to the image, centre included (as Cycles)
+        for (int yy = std::max(0, y - r); yy <= std::min(h - 1, y + r); ++yy) {
+          const float* row = ls.data() + static_cast<std::size_t>(yy) * w;
+          for (int xx = std::max(0, x - r); xx <= std::min(w - 1, x + r); ++xx, ++n) below += row[xx] < half_l;
+        }
+        const int k = static_cast<int>(n * kOutlierPercentile);  // Cycles' index: 18 of 25
+        if (!(valid[i] != 0.0f && below > k)) continue;
+        n = 0;
         for (int yy = std::max(0, y - r); yy <= std::min(h - 1, y + r); ++yy)
           for (int xx = std::max(0, x - r); xx <= std::min(w - 1, x + r); ++xx)
             values[n++] = ls[static_cast<std::size_t>(yy) * w + xx];
-        const int k = static_cast<int>(n * kOutlierPercentile);  // Cycles' index: 18 of 25
         std::nth_element(values, values + k, values + n);
-        const std::size_t i = static_cast<std::size_t>(y) * w + x;
         const float reference = kOutlierFactor * values[k];
         ref[i] = reference;
-        const float l = ls[i], confirm = lo[i];
-        const bool candidate = valid[i] != 0.0f && l > reference;
+        const float confirm = lo[i];
+        const bool candidate = l > reference;  // true by the count; kept for clarity
         const bool highlight = confirm > reference && kHighlightRatio * confirm >= l;
         out[i] = candidate && !highlight ? 1 : 0;
       }

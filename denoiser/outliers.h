@@ -31,7 +31,8 @@ constexpr float kOutlierFactor = 2.0f;  // the reference is twice the percentile
 constexpr float kHighlightRatio = 4.0f;  // the other half confirms when > the reference and > 1/4 of it
 
 // Per pixel: 1 where `self` (3 channels) is an outlier given the other half `other`; `ref`
-// receives the reference luminance of every pixel (the mean over channels of max(0, c)).
+// receives the reference luminance (luminance: the mean over channels of max(0, c)) of every
+// candidate, valid pixel above its reference, and 0 elsewhere.
 // `valid` (1 per pixel, 0/1) are the pixels of `self` that hold data: others never are.
 // Rows in parallel in the caller's arena; deterministic.
 std::vector<std::uint8_t> detect_outliers(const Planes& self, const Planes& other, const std::vector<float>& valid,

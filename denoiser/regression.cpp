@@ -21,11 +21,12 @@ constexpr float kSelfWeight = 1e-3f;
 // A pixel whose windows' weights sum to less than this (with no data of its own) keeps its
 // filled colour: below it, weight x fit products are denormal and their ratio meaningless.
 constexpr float kMinWeightSum = 1e-30f;
-// The reciprocal condition number (1-norm estimate) of the Jacobi-scaled normal matrix below
-// which a window's first-order fit is not trusted and its weighted mean is used instead. The
-// ridge alone keeps it above ~ridge / P = 1e-4 for the default ridge; this guards ridge = 0
-// and degenerate windows.
-constexpr double kMinRcond = 1e-7;
+// The smallest ratio of the LDLT pivots of the Jacobi-scaled (unit diagonal) normal matrix,
+// min |D| / max |D| (a cheap stand-in for its reciprocal condition number: no extra solves),
+// below which a window's first-order fit is not trusted and its weighted mean is used instead.
+// The default ridge alone keeps the smallest pivot above ~ridge = 1e-3 (the largest is at
+// most P); this guards ridge = 0 and degenerate windows (collinear or constant features).
+constexpr double kMinPivotRatio = 1e-7;
 
 using RowMatrix = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic>;
 
@@ -147,7 +148,8 @@ void solve(const Context& ctx, int n, Scratch& s) {
     const Eigen::Matrix<double, P, 1> d = G.diagonal().cwiseSqrt().cwiseInverse();
     const Eigen::LDLT<Eigen::Matrix<double, P, P>> ldlt(d.asDiagonal() * G * d.asDiagonal());
     const Eigen::Matrix<double, P, 3> beta = d.asDiagonal() * ldlt.solve(d.asDiagonal() * b);
-    if (ldlt.info() == Eigen::Success && ldlt.rcond() >= kMinRcond && beta.allFinite()) {
+    const auto pivots = ldlt.vectorD().cwiseAbs();
+    if (ldlt.info() == Eigen::Success && pivots.minCoeff() >= kMinPivotRatio * pivots.maxCoeff() && beta.allFinite()) {
       s.beta.middleCols<3>(3 * v) = beta.cast<float>();
     } else {
       s.beta.middleCols<3>(3 * v).setZero();
@@ -166,7 +168,7 @@ void accumulate(const Context& ctx, int n, Scratch& s) {
       const float wt = s.recon_w(i, v);
       const std::size_t q = s.index[i];
       wsum[q] += wt;
-      for (int k = 0; k < 3; ++k) sum.at(k, q) += wt * std::min(s.hi[v][k], std::max(s.lo[v][k], s.fits(i, 3 * v + k)));  // NaN: lo
+      for (int k = 0; k < 3; ++k) sum.at(k, q) += wt * std::min(s.hi[v][k], std::max(s.lo[v][k], s.fits(i, 3 * v + k)));  // NaN: lo  // NaN: lo
     }
   }
 }
