@@ -41,6 +41,9 @@ DenoiseResult run(const DenoiseInput& in, const DenoiseParams& p) {
     out.variance[i] = na + nb > 0.0f ? var / (3.0f * (na + nb) * (na + nb)) : 0.0f;
   }
   out.selected = selection.chosen;
+  out.outliers.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+    out.outliers[i] = static_cast<std::uint8_t>(halves.h[0].outlier[i] | (halves.h[1].outlier[i] << 1));
   return out;
 }
 

@@ -7,6 +7,13 @@
 // independent of the data; two candidate bandwidths are run and chosen per pixel by the error
 // the half buffers estimate; the two filtered halves are then combined.
 //
+// Before all that, fireflies are taken out of each half buffer (denoiser/outliers.h, after
+// Cycles' denoiser): a pixel brighter than twice the 75th percentile of its 5x5 neighbourhood
+// that the other half does not confirm is scaled down to that reference for the weights and
+// is data for no window. This is a bias: the energy of a removed firefly is not in the denoised
+// colour (the caller's noisy beauty keeps it). Each window's fit is bounded by the range of the
+// colours it was fitted to, so no window extrapolates.
+//
 // A plain image-processing library: Eigen, TBB and the standard library only.
 #pragma once
 
@@ -48,7 +55,8 @@ struct DenoiseParams {
 struct DenoiseResult {
   std::vector<float> rgb;  // 3 per pixel, finite, non-negative
   std::vector<std::uint8_t> selected;  // 1 per pixel: the index of the chosen bandwidth
-  std::vector<float> variance;  // 1 per pixel: the estimated variance of the noisy mean colour (channel average)
+  std::vector<float> variance;  // 1 per pixel: the estimated variance of the noisy mean colour (channel average), fireflies excluded
+  std::vector<std::uint8_t> outliers;  // 1 per pixel: bit 0 the even half was a firefly there, bit 1 the odd half
 };
 
 // Throws std::invalid_argument when a size does not match width x height, the colour halves

@@ -1,8 +1,12 @@
 #include "denoiser/prepare.h"
 
+#include <algorithm>
+
 #include <cmath>
 #include <stdexcept>
 #include <string>
+
+#include "denoiser/outliers.h"
 
 namespace tessera::denoiser {
 
@@ -65,6 +69,24 @@ void make_guide(Half& h, const std::vector<float>& any) {
   for (float& v : h.guide_variance.data) v /= 9.0f;
 }
 
+// Fireflies (denoiser/outliers.h): both halves are detected first, on the colours as given,
+// then each outlier is scaled down to its reference luminance and stops being data.
+void remove_outliers(Halves& halves) {
+  std::vector<float> ref[2];
+  for (int k = 0; k < 2; ++k)
+    halves.h[k].outlier = detect_outliers(halves.h[k].color, halves.h[1 - k].color, halves.h[k].valid, ref[k]);
+  for (int k = 0; k < 2; ++k) {
+    Half& h = halves.h[k];
+    for (std::size_t i = 0; i < h.valid.size(); ++i) {
+      if (!h.outlier[i]) continue;
+      const float l = (std::max(h.color.at(0, i), 0.0f) + std::max(h.color.at(1, i), 0.0f) + std::max(h.color.at(2, i), 0.0f)) / 3.0f;
+      const float scale = ref[k][i] / l;  // l > ref >= 0
+      for (int c = 0; c < 3; ++c) h.color.at(c, i) *= scale;
+      h.valid[i] = 0.0f;
+    }
+  }
+}
+
 }  // namespace
 
 void validate(const DenoiseInput& in, const DenoiseParams& p) {
@@ -110,6 +132,7 @@ Halves prepare_halves(const DenoiseInput& in, const DenoiseParams& p) {
   }
   fill_missing(out.h[0], out.h[1]);
   fill_missing(out.h[1], out.h[0]);
+  remove_outliers(out);
   const Planes s2 = sample_variance(out.h[0], out.h[1], p.variance_radius);
   std::vector<float> any(n);
   for (std::size_t i = 0; i < n; ++i) any[i] = out.h[0].valid[i] + out.h[1].valid[i] > 0.0f ? 1.0f : 0.0f;

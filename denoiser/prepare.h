@@ -10,7 +10,8 @@ namespace tessera::denoiser {
 
 struct Half {
   Planes color;  // 3 channels; where this half is missing, the other half (or 0)
-  std::vector<float> valid;  // 1 where this half has finite values and at least one sample
+  std::vector<float> valid;  // 1 where this half has finite values, at least one sample and no outlier
+  std::vector<std::uint8_t> outlier;  // 1 where this half's colour was a firefly (denoiser/outliers.h)
   std::vector<float> count;  // its number of samples (1 each when the input gives none)
   Planes variance;  // 3: the variance of this half's mean, estimated from both halves, smoothed
   Planes guide, guide_variance;  // 3 + 3: the 3x3 mean of the colour and its variance

@@ -18,6 +18,15 @@ constexpr float kEpsilon = 1e-10f;  // NL-means: noise-free equal colours are at
 // (each covers it with weight up to 1), it only decides pixels that no window accepts, such
 // as noise-free detail whose neighbours all differ.
 constexpr float kSelfWeight = 1e-3f;
+// A pixel whose windows' weights sum to less than this (with no data of its own) keeps its
+// filled colour: below it, weight x fit products are denormal and their ratio meaningless.
+constexpr float kMinWeightSum = 1e-30f;
+// The smallest ratio of the LDLT pivots of the Jacobi-scaled (unit diagonal) normal matrix,
+// min |D| / max |D| (a cheap stand-in for its reciprocal condition number: no extra solves),
+// below which a window's first-order fit is not trusted and its weighted mean is used instead.
+// The default ridge alone keeps the smallest pivot above ~ridge = 1e-3 (the largest is at
+// most P); this guards ridge = 0 and degenerate windows (collinear or constant features).
+constexpr double kMinPivotRatio = 1e-7;
 
 using RowMatrix = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic>;
 
@@ -25,6 +34,7 @@ struct Scratch {
   RowMatrix design, weighted, moments, fits;  // n x Z, n x V P, V P x Z, n x 3 V
   Eigen::Matrix<float, Eigen::Dynamic, V> data_w, recon_w;  // n x V
   Eigen::Matrix<float, P, 3 * V> beta;
+  float lo[V][3], hi[V][3];  // per variant and channel: the range of the colours the fit saw
   std::vector<std::size_t> index;  // pixel of each window row
   explicit Scratch(int n)
       : design(n, Z), weighted(n, V * P), moments(V * P, Z), fits(n, 3 * V), data_w(n, V), recon_w(n, V), index(n) {}
@@ -106,7 +116,12 @@ void fill_weights(const Context& ctx, int cx, int cy, Scratch& s) {
 }
 
 // Weighted least squares per variant, ridge-regularised on the feature coefficients in
-// proportion to each one's own moment (scale-free) plus a floor for constant features.
+// proportion to each one's own moment (scale-free) plus a floor for constant features. The
+// normal matrix is solved Jacobi-scaled (unit diagonal), whose conditioning is then checked:
+// a poorly conditioned or non-finite solve falls back to the zero-order fit (the weighted
+// mean). Either way accumulate() bounds the fit by the range of the colours it was fitted to,
+// so a window can never extrapolate beyond its own data (an isolated bright pixel with
+// leverage on the features used to throw its neighbours to +-100x the level).
 void solve(const Context& ctx, int n, Scratch& s) {
   for (int v = 0; v < V; ++v)
     s.weighted.block(0, v * P, n, P) = s.design.topLeftCorner(n, P).array().colwise() * s.data_w.col(v).head(n).array();
@@ -121,8 +136,25 @@ void solve(const Context& ctx, int n, Scratch& s) {
       s.recon_w.col(v).head(n).setZero();
       continue;
     }
+    for (int k = 0; k < 3; ++k) s.lo[v][k] = INFINITY, s.hi[v][k] = -INFINITY;
+    for (int i = 0; i < n; ++i) {
+      if (!(s.data_w(i, v) > 0.0f)) continue;
+      for (int k = 0; k < 3; ++k) {
+        const float c = s.design(i, P + 3 * half + k);
+        s.lo[v][k] = std::min(s.lo[v][k], c), s.hi[v][k] = std::max(s.hi[v][k], c);
+      }
+    }
     for (int j = 1; j < P; ++j) G(j, j) += ctx.p.ridge * G(j, j) + 1e-6 * total;
-    s.beta.middleCols<3>(3 * v) = G.ldlt().solve(b).cast<float>();
+    const Eigen::Matrix<double, P, 1> d = G.diagonal().cwiseSqrt().cwiseInverse();
+    const Eigen::LDLT<Eigen::Matrix<double, P, P>> ldlt(d.asDiagonal() * G * d.asDiagonal());
+    const Eigen::Matrix<double, P, 3> beta = d.asDiagonal() * ldlt.solve(d.asDiagonal() * b);
+    const auto pivots = ldlt.vectorD().cwiseAbs();
+    if (ldlt.info() == Eigen::Success && pivots.minCoeff() >= kMinPivotRatio * pivots.maxCoeff() && beta.allFinite()) {
+      s.beta.middleCols<3>(3 * v) = beta.cast<float>();
+    } else {
+      s.beta.middleCols<3>(3 * v).setZero();
+      s.beta.block<1, 3>(0, 3 * v) = (b.row(0) / total).cast<float>();
+    }
   }
 }
 
@@ -131,11 +163,12 @@ void accumulate(const Context& ctx, int n, Scratch& s) {
   for (int v = 0; v < V; ++v) {
     Planes& sum = ctx.acc.sum[v];
     float* wsum = ctx.acc.weight[v].plane(0);
+    if (!(s.recon_w.col(v).head(n).maxCoeff() > 0.0f)) continue;  // no data: no fit, no range
     for (int i = 0; i < n; ++i) {
       const float wt = s.recon_w(i, v);
       const std::size_t q = s.index[i];
       wsum[q] += wt;
-      for (int k = 0; k < 3; ++k) sum.at(k, q) += wt * s.fits(i, 3 * v + k);
+      for (int k = 0; k < 3; ++k) sum.at(k, q) += wt * std::min(s.hi[v][k], std::max(s.lo[v][k], s.fits(i, 3 * v + k)));  // NaN: lo  // NaN: lo
     }
   }
 }
@@ -172,7 +205,8 @@ Planes normalise(const Accumulator& acc, int v, const Half& half) {
   for (std::size_t i = 0; i < n; ++i) {
     const float self = kSelfWeight * half.valid[i];
     const float total = wsum[i] + self;
-    if (!(total > 0.0f)) continue;  // no window reaches it and it has no data: keep the fill
+    // No window reaches it (or only with negligible weight) and it has no data: keep the fill.
+    if (!(total >= kMinWeightSum)) continue;
     for (int k = 0; k < 3; ++k) out.at(k, i) = (acc.sum[v].at(k, i) + self * half.color.at(k, i)) / total;
   }
   return out;

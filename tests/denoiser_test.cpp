@@ -1,17 +1,20 @@
 // The denoiser (denoiser/denoise.h) on synthetic images whose answer is known: constants and
 // noise-free images come back unchanged, Gaussian noise drops by what the window allows (and
 // no more), an albedo edge stays sharp, the bits do not depend on the thread count, and
-// nothing non-finite gets through.
+// nothing non-finite gets through; fireflies are taken out (and only fireflies), and no window
+// extrapolates beyond the colours it was fitted to.
 #include <gtest/gtest.h>
 
 #include <array>
 #include <cmath>
 #include <cstring>
 #include <functional>
+#include <limits>
 #include <random>
 #include <stdexcept>
 
 #include "denoiser/denoise.h"
+#include "denoiser/outliers.h"
 #include "denoiser/planes.h"
 
 namespace tessera {
@@ -227,6 +230,156 @@ TEST(Denoiser, AlbedoEdgeIsNotBlurred) {
   const Scene flat = edge_scene(false);
   const std::vector<float> blurred = denoise(make_input(flat), {}).rgb;
   EXPECT_GT(std::abs(column_error(blurred, flat, 23)) + std::abs(column_error(blurred, flat, 24)), 2 * bound);
+}
+
+TEST(DenoiserOutliers, NoiseFreeAndConstantImagesHaveNone) {
+  // Equal halves: the other half always confirms a bright pixel (it is as bright), so the
+  // detector finds nothing, whatever the texture; a constant image has no pixel above twice
+  // its neighbourhood's percentile in the first place.
+  Scene s;
+  s.color = [](int x, int y) { return Rgb{0.01f + 20.0f * texture(x, y, 0) * texture(x, y, 1), 0.1f, 0.0f}; };
+  const DenoiseResult r = denoise(make_input(s), {});
+  for (std::uint8_t o : r.outliers) ASSERT_EQ(o, 0);
+  s.color = [](int, int) { return Rgb{0.25f, 0.5f, 2.0f}; };
+  for (std::uint8_t o : denoise(make_input(s), {}).outliers) ASSERT_EQ(o, 0);
+  s.color = [](int, int) { return Rgb{0.0f, 0.0f, 0.0f}; };
+  for (std::uint8_t o : denoise(make_input(s), {}).outliers) ASSERT_EQ(o, 0);
+}
+
+TEST(DenoiserOutliers, ALegitimateHighlightIsKeptAFireflyIsNot) {
+  // A single bright pixel (50x) in both halves is confirmed by the other half; the same pixel
+  // in one half only (the other at the level) is a firefly, scaled to twice the percentile.
+  denoiser::Planes a(9, 9, 3, 1.0f), b(9, 9, 3, 1.0f);
+  const std::vector<float> valid(81, 1.0f);
+  std::vector<float> ref;
+  for (int c = 0; c < 3; ++c) a.at(c, 40) = b.at(c, 40) = 50.0f;
+  EXPECT_EQ(denoiser::detect_outliers(a, b, valid, ref)[40], 0);
+  EXPECT_EQ(ref[40], 2.0f);
+  for (int c = 0; c < 3; ++c) b.at(c, 40) = 1.0f;
+  const std::vector<std::uint8_t> o = denoiser::detect_outliers(a, b, valid, ref);
+  for (int i = 0; i < 81; ++i) EXPECT_EQ(o[i], i == 40 ? 1 : 0) << i;
+  // Confirmed only by a value below a quarter of it: still a firefly (a bright pixel with a
+  // firefly on top in one half).
+  for (int c = 0; c < 3; ++c) b.at(c, 40) = 10.0f;
+  EXPECT_EQ(denoiser::detect_outliers(a, b, valid, ref)[40], 1);
+}
+
+TEST(Denoiser, FirefliesAreRemovedWithoutSpreading) {
+  // A noisy smooth image, then the same with fireflies: single pixels of the even half at
+  // 1000x the local level.
+  const Scene s = gradient_scene(0.05f);
+  const DenoiseInput clean = make_input(s);
+  DenoiseInput fire = clean;
+  const int spots[][2] = {{30, 30}, {62, 41}, {44, 70}, {80, 80}, {2, 50}};
+  for (const auto& p : spots)
+    for (int k = 0; k < 3; ++k) fire.color_even[3 * (p[1] * s.width + p[0]) + k] = 1000.0f * s.color(p[0], p[1])[k];
+  const DenoiseResult a = denoise(clean, {}), b = denoise(fire, {});
+  const DenoiseParams p;
+  const int w = s.width, h = s.height;
+
+  // The detector finds exactly the fireflies: the flags differ only there, in the even half.
+  for (int i = 0; i < w * h; ++i) {
+    bool spot = false;
+    for (const auto& q : spots) spot |= i == q[1] * w + q[0];
+    ASSERT_EQ(b.outliers[i], spot ? (a.outliers[i] | 1) : a.outliers[i]) << i;
+  }
+
+  // Far from them, the result is the firefly-free one. A firefly is data for no window; what
+  // changes is its pixel's validity (variance box, radius 2), its scaled colour in the even
+  // guide (3x3 box) and its absence from the selection's error box (radius 3). A pixel's
+  // value reads windows whose centres are within R and whose pixels are within R of those,
+  // weighted by guides within 1 + variance_radius further: so beyond 2R + 1 +
+  // variance_radius + selection_radius it depends on the fireflies only through the
+  // rounding of the box filters' running sums (double, cast to float: at most the last bit of
+  // a guide, 2^-24 relative), which moves a weight exp(-d) by d 2^-23 relative (d < 87) and a
+  // weighted mean of values within 10% of each other by less than 1e-5 relative.
+  const int reach = 2 * p.radius + 1 + p.variance_radius + p.selection_radius;
+  int far = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      bool near = false;
+      for (const auto& q : spots) near |= std::max(std::abs(x - q[0]), std::abs(y - q[1])) <= reach;
+      if (near) continue;
+      ++far;
+      const std::size_t i = static_cast<std::size_t>(y) * w + x;
+      for (int k = 0; k < 3; ++k) ASSERT_NEAR(b.rgb[3 * i + k], a.rgb[3 * i + k], 1e-5f * a.rgb[3 * i + k]) << x << " " << y;
+    }
+  EXPECT_GT(far, w * h / 10);
+
+  // Near them, nothing is brighter than the firefly-free input allows: every fit is bounded
+  // by the colours of its window (fireflies excluded, so colours of the firefly-free halves),
+  // and a pixel's value is a convex combination of the fits of windows centred within R of
+  // it (data within 2R) and its own colour: so at most the largest firefly-free half colour
+  // within 2R, factor 1 (up to float rounding, 1e-5).
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * w + x;
+      for (int k = 0; k < 3; ++k) {
+        float bound = 0.0f;
+        for (int yy = std::max(0, y - 2 * p.radius); yy <= std::min(h - 1, y + 2 * p.radius); ++yy)
+          for (int xx = std::max(0, x - 2 * p.radius); xx <= std::min(w - 1, x + 2 * p.radius); ++xx) {
+            const std::size_t j = 3 * (static_cast<std::size_t>(yy) * w + xx) + k;
+            bound = std::max({bound, clean.color_even[j], clean.color_odd[j]});
+          }
+        ASSERT_LE(b.rgb[3 * i + k], bound * (1.0f + 1e-5f)) << x << " " << y << " " << k;
+      }
+    }
+}
+
+TEST(Denoiser, IllConditionedWindowsStayWithinTheInputRange) {
+  // Three windows a first-order fit handles badly. 0: features constant but for one pixel (a
+  // lone albedo spike: a regressor that is 0 on every row but one, leverage 1). 1: collinear
+  // features (albedo R = G = B = normal x = a ramp in x, itself collinear with screen x)
+  // without the ridge, so the normal matrix is singular but for its 1e-6 floor. 2: nearly
+  // collinear features (normal x = albedo + 1e-3 noise) without the ridge, and holes (no
+  // colour in either half) whose normal breaks the collinearity by 0.5: the fit's coefficient
+  // along the near-null direction is noise amplified ~100x, and the holes, reconstructed from
+  // the windows' fits, are where it is evaluated. With a noisy colour (and a bright spot in
+  // 0 and 1), every output pixel must be finite and within the range of the finite input
+  // colours, channel by channel: each fit is bounded by its window's colours, and all else is
+  // a convex combination. (Without that bound, case 2 leaves the range by a wide margin.)
+  for (int variant = 0; variant < 3; ++variant) {
+    Scene s;
+    s.sigma = variant == 2 ? 0.1f : 0.2f;
+    const bool spot_on = variant < 2;
+    s.color = [spot_on](int x, int y) {
+      if (spot_on && x == 31 && y == 29) return Rgb{5.0f, 5.0f, 5.0f};
+      const float a = 0.3f + 0.005f * x;
+      return Rgb{a, a, a};
+    };
+    const auto hole = [](int x, int y) { return x % 9 == 4 && y % 9 == 4; };
+    if (variant == 0) {
+      s.albedo = [](int x, int y) { return x == 31 && y == 29 ? Rgb{0.9f, 0.1f, 0.9f} : Rgb{0.5f, 0.5f, 0.5f}; };
+    } else if (variant == 1) {
+      s.albedo = [](int x, int) { return Rgb{0.01f * x, 0.01f * x, 0.01f * x}; };
+      s.normal = [](int x, int) { return Rgb{0.01f * x, 0.0f, 1.0f}; };
+    } else {
+      s.albedo = [](int x, int) { return Rgb{0.3f + 0.005f * x, 0.5f, 0.5f}; };
+      s.normal = [hole](int x, int y) {
+        return Rgb{0.3f + 0.005f * x + (hole(x, y) ? 0.5f : 1e-3f * (texture(x, y, 5) - 0.5f)), 0.0f, 1.0f};
+      };
+    }
+    DenoiseInput in = make_input(s);
+    if (variant == 2)
+      for (int y = 0; y < s.height; ++y)
+        for (int x = 0; x < s.width; ++x)
+          if (hole(x, y))
+            for (int k = 0; k < 3; ++k) in.color_even[3 * (y * s.width + x) + k] = in.color_odd[3 * (y * s.width + x) + k] = NAN;
+    DenoiseParams p;
+    if (variant > 0) p.ridge = 0.0f;
+    const DenoiseResult r = denoise(in, p);
+    for (int k = 0; k < 3; ++k) {
+      float lo = std::numeric_limits<float>::max(), hi = 0.0f;
+      for (std::size_t i = k; i < in.color_even.size(); i += 3)
+        for (float v : {in.color_even[i], in.color_odd[i]})
+          if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
+      for (std::size_t i = k; i < r.rgb.size(); i += 3) {
+        ASSERT_TRUE(std::isfinite(r.rgb[i]));
+        ASSERT_GE(r.rgb[i], std::max(lo, 0.0f) * (1.0f - 1e-5f)) << variant << " " << i / 3;
+        ASSERT_LE(r.rgb[i], hi * (1.0f + 1e-5f)) << variant << " " << i / 3;
+      }
+    }
+  }
 }
 
 TEST(Denoiser, SameBitsForAnyThreadCount) {

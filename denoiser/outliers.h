@@ -1,0 +1,41 @@
+// Firefly (outlier) detection before the regression, after Cycles' denoiser
+// (filter_detect_outliers): a pixel of a half buffer whose luminance exceeds twice the 75th
+// percentile of the luminances in its 5x5 neighbourhood (in the same half) is a candidate.
+// Cycles then keeps a candidate as a legitimate highlight when its own sample variance says
+// the reference is more than 3 sigma below it; here the per-pixel evidence is the other half,
+// an independent estimate of the same pixel: the candidate is a legitimate highlight (an
+// emissive detail, a specular glint every sample sees) when the other half is also above the
+// reference and no less than a quarter of it. A firefly is one rare, huge sample, so it lands
+// in one half only and fails that test.
+//
+// What an outlier becomes (prepare_halves): its colour in that half is scaled down to the
+// reference luminance (so that its NL-means guide does not make it dissimilar from everything)
+// and it is marked not valid in that half, so it is data for no window, takes no part in the
+// variance estimate or the selection's error estimate, and its pixel is reconstructed from its
+// neighbours' fits. Each half is detected on its own colour and neighbourhood; the other half
+// only vetoes at the same pixel, and the scaled value is the half's own reference, so the
+// weights of one half's regression still come from the other half's colours alone.
+//
+// Bias: the energy of a removed firefly is lost from the denoised colour (a correct estimate
+// would keep its mean contribution, spread thinly over the image); the noisy beauty keeps it.
+// A noise-free image (equal halves) has no outliers: the other half always confirms.
+#pragma once
+
+#include "denoiser/planes.h"
+
+namespace tessera::denoiser {
+
+constexpr int kOutlierRadius = 2;  // the 5x5 neighbourhood of the reference
+constexpr float kOutlierPercentile = 0.75f;
+constexpr float kOutlierFactor = 2.0f;  // the reference is twice the percentile
+constexpr float kHighlightRatio = 4.0f;  // the other half confirms when > the reference and > 1/4 of it
+
+// Per pixel: 1 where `self` (3 channels) is an outlier given the other half `other`; `ref`
+// receives the reference luminance (luminance: the mean over channels of max(0, c)) of every
+// candidate, valid pixel above its reference, and 0 elsewhere.
+// `valid` (1 per pixel, 0/1) are the pixels of `self` that hold data: others never are.
+// Rows in parallel in the caller's arena; deterministic.
+std::vector<std::uint8_t> detect_outliers(const Planes& self, const Planes& other, const std::vector<float>& valid,
+                                          std::vector<float>& ref);
+
+}  // namespace tessera::denoiser
