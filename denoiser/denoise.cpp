@@ -20,7 +20,7 @@ DenoiseResult run(const DenoiseInput& in, const DenoiseParams& p) {
   const Features features = prepare_features(in, p, halves);
   const Planes filtered_features = prefilter_features(features, p.feature_radius, p.feature_bandwidth);
   const Filtered filtered = regress(halves, filtered_features, p);
-  const Selection selection = select_and_combine(halves, filtered, p.selection_radius);
+  const Selection selection = select_and_combine(halves, filtered, p.selection_radius, p.selection_blend_radius);
 
   const std::size_t n = selection.rgb.pixels();
   DenoiseResult out;

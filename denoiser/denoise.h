@@ -49,12 +49,13 @@ struct DenoiseParams {
   float feature_bandwidth = 1.0f;
   int variance_radius = 2;  // the 1-dof per-pixel variance is averaged over (2 r + 1)^2 pixels
   int selection_radius = 3;  // the estimated error of each candidate is averaged likewise
+  int selection_blend_radius = 1;  // each pixel blends the candidates chosen in its (2 r + 1)^2 box
   float ridge = 1e-3f;  // Tikhonov term on the feature coefficients, relative to the weight sum
 };
 
 struct DenoiseResult {
   std::vector<float> rgb;  // 3 per pixel, finite, non-negative
-  std::vector<std::uint8_t> selected;  // 1 per pixel: the index of the chosen bandwidth
+  std::vector<std::uint8_t> selected;  // 1 per pixel: the chosen candidate, 0 or 1 a bandwidth, 2 the unfiltered colour
   std::vector<float> variance;  // 1 per pixel: the estimated variance of the noisy mean colour (channel average), fireflies excluded
   std::vector<std::uint8_t> outliers;  // 1 per pixel: bit 0 the even half was a firefly there, bit 1 the odd half
 };

@@ -12,6 +12,8 @@ namespace tessera::denoiser {
 
 namespace {
 
+float compress(float c) { return std::log1p(std::max(c, 0.0f)); }
+
 void check_size(const std::vector<float>& v, std::size_t expected, const char* name, bool optional) {
   if (optional && v.empty()) return;
   if (v.size() != expected)
@@ -45,7 +47,9 @@ void fill_missing(Half& a, const Half& b) {
 
 // Per-sample variance sigma^2 from the two half means: E[(A - B)^2] = sigma^2 (1/nA + 1/nB),
 // one degree of freedom per pixel, so it is averaged over a box of pixels where both exist.
-Planes sample_variance(const Half& a, const Half& b, int radius) {
+// Of the colours as given, or (log_domain) of log(1 + max(c, 0)). `raw` (optional) receives
+// the per-pixel estimates before the box.
+Planes sample_variance(const Half& a, const Half& b, int radius, bool log_domain, Planes* raw = nullptr) {
   const std::size_t n = a.valid.size();
   Planes s2(a.color.width, a.color.height, 3);
   std::vector<float> both(n);
@@ -54,18 +58,26 @@ Planes sample_variance(const Half& a, const Half& b, int radius) {
     if (both[i] == 0.0f) continue;
     const float scale = 1.0f / (1.0f / a.count[i] + 1.0f / b.count[i]);
     for (int c = 0; c < 3; ++c) {
-      const float d = a.color.at(c, i) - b.color.at(c, i);
+      const float ca = a.color.at(c, i), cb = b.color.at(c, i);
+      const float d = log_domain ? compress(ca) - compress(cb) : ca - cb;
       s2.at(c, i) = d * d * scale;
     }
   }
+  if (raw) *raw = s2;
   return box_mean(s2, radius, &both);
 }
 
-// The NL-means guide: the 3x3 patch mean (over pixels with any colour) and its variance,
-// the mean of the 9 variances divided by 9 (independent pixels).
-void make_guide(Half& h, const std::vector<float>& any) {
-  h.guide = box_mean(h.color, 1, &any);
-  h.guide_variance = box_mean(h.variance, 1, &any);
+// The NL-means guide, on the range-compressed colour t = log(1 + max(c, 0)): the 3x3 patch
+// mean of t (over pixels with any colour) and its variance, the mean of the 9 variances of t
+// divided by 9 (independent pixels). In the compressed range a bright, noisy highlight has a
+// moderate variance (its relative one), so it is far from a dark, quiet neighbour; with the
+// linear colour the highlight's variance, spread by the variance box, made dark pixels beside
+// it "similar" to it, and its energy leaked into their fits (halos).
+void make_guide(Half& h, const Planes& log_variance, const std::vector<float>& any) {
+  Planes t = h.color;
+  for (float& v : t.data) v = compress(v);
+  h.guide = box_mean(t, 1, &any);
+  h.guide_variance = box_mean(log_variance, 1, &any);
   for (float& v : h.guide_variance.data) v /= 9.0f;
 }
 
@@ -109,7 +121,7 @@ void validate(const DenoiseInput& in, const DenoiseParams& p) {
   if (p.radius < 1 || p.radius > 32) throw std::invalid_argument("denoise: radius must be in [1, 32]");
   if (p.stride < 1 || p.stride > p.radius + 1) throw std::invalid_argument("denoise: stride must be in [1, radius + 1]");
   if (p.feature_radius < 0 || p.feature_radius > 16) throw std::invalid_argument("denoise: feature_radius must be in [0, 16]");
-  if (p.variance_radius < 0 || p.selection_radius < 0) throw std::invalid_argument("denoise: radii must be >= 0");
+  if (p.variance_radius < 0 || p.selection_radius < 0 || p.selection_blend_radius < 0) throw std::invalid_argument("denoise: radii must be >= 0");
   for (float k : p.bandwidths)
     if (!(k > 0.0f)) throw std::invalid_argument("denoise: bandwidths must be > 0");
   if (!(p.feature_bandwidth > 0.0f)) throw std::invalid_argument("denoise: feature_bandwidth must be > 0");
@@ -133,14 +145,23 @@ Halves prepare_halves(const DenoiseInput& in, const DenoiseParams& p) {
   fill_missing(out.h[0], out.h[1]);
   fill_missing(out.h[1], out.h[0]);
   remove_outliers(out);
-  const Planes s2 = sample_variance(out.h[0], out.h[1], p.variance_radius);
+  Planes s2_raw;
+  const Planes s2 = sample_variance(out.h[0], out.h[1], p.variance_radius, false, &s2_raw);
+  const Planes s2_log = sample_variance(out.h[0], out.h[1], p.variance_radius, true);
   std::vector<float> any(n);
   for (std::size_t i = 0; i < n; ++i) any[i] = out.h[0].valid[i] + out.h[1].valid[i] > 0.0f ? 1.0f : 0.0f;
   for (Half& h : out.h) {
     h.variance = s2;
+    h.pixel_variance = s2_raw;
+    Planes log_variance = s2_log;
     for (int c = 0; c < 3; ++c)
-      for (std::size_t i = 0; i < n; ++i) h.variance.at(c, i) /= std::max(h.count[i], 1.0f);
-    make_guide(h, any);
+      for (std::size_t i = 0; i < n; ++i) {
+        const float count = std::max(h.count[i], 1.0f);
+        h.variance.at(c, i) /= count;
+        h.pixel_variance.at(c, i) /= count;
+        log_variance.at(c, i) /= count;
+      }
+    make_guide(h, log_variance, any);
   }
   return out;
 }

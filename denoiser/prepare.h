@@ -14,7 +14,12 @@ struct Half {
   std::vector<std::uint8_t> outlier;  // 1 where this half's colour was a firefly (denoiser/outliers.h)
   std::vector<float> count;  // its number of samples (1 each when the input gives none)
   Planes variance;  // 3: the variance of this half's mean, estimated from both halves, smoothed
-  Planes guide, guide_variance;  // 3 + 3: the 3x3 mean of the colour and its variance
+  // 3: the same, one pixel's own estimate (1 degree of freedom, unbiased, 0 where a half is
+  // missing): the selection averages it over its box together with the errors it corrects,
+  // so a highlight's variance weighs there only in proportion (the relative error).
+  Planes pixel_variance;
+  // 3 + 3: the 3x3 mean of the range-compressed colour log(1 + c), and its variance
+  Planes guide, guide_variance;
 };
 
 struct Halves {

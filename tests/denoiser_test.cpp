@@ -16,6 +16,8 @@
 #include "denoiser/denoise.h"
 #include "denoiser/outliers.h"
 #include "denoiser/planes.h"
+#include "denoiser/prepare.h"
+#include "denoiser/selection.h"
 
 namespace tessera {
 namespace {
@@ -288,12 +290,13 @@ TEST(Denoiser, FirefliesAreRemovedWithoutSpreading) {
   // changes is its pixel's validity (variance box, radius 2), its scaled colour in the even
   // guide (3x3 box) and its absence from the selection's error box (radius 3). A pixel's
   // value reads windows whose centres are within R and whose pixels are within R of those,
-  // weighted by guides within 1 + variance_radius further: so beyond 2R + 1 +
-  // variance_radius + selection_radius it depends on the fireflies only through the
+  // weighted by guides within 1 + variance_radius further, and blends the choices of the
+  // pixels within selection_blend_radius: so beyond 2R + 1 + variance_radius +
+  // selection_radius + selection_blend_radius it depends on the fireflies only through the
   // rounding of the box filters' running sums (double, cast to float: at most the last bit of
   // a guide, 2^-24 relative), which moves a weight exp(-d) by d 2^-23 relative (d < 87) and a
   // weighted mean of values within 10% of each other by less than 1e-5 relative.
-  const int reach = 2 * p.radius + 1 + p.variance_radius + p.selection_radius;
+  const int reach = 2 * p.radius + 1 + p.variance_radius + p.selection_radius + p.selection_blend_radius;
   int far = 0;
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
@@ -380,6 +383,122 @@ TEST(Denoiser, IllConditionedWindowsStayWithinTheInputRange) {
       }
     }
   }
+}
+
+TEST(Denoiser, ABrightNoisyHighlightDoesNotHaloIntoDarkNeighbours) {
+  // A dark flat region (0.1, per-half noise sigma 0.01) around a 3x3 highlight block at 300
+  // with per-half noise 60 (20%), the same in both halves (a glint every sample sees, not a
+  // firefly), and no feature marking it (a specular highlight on the same material). The
+  // dark pixels must keep their level: their noisy mean has standard error
+  // sigma_m = sigma / sqrt(2); each output pixel is either a fit of dark pixels (far less
+  // noisy) or its noisy value, so it must be within 6 sigma_m of 0.1 (a noisy value exceeds
+  // that with probability 2e-9), and the mean of the dark pixels within the window radius of
+  // the block within 4 standard errors of that mean, 4 sigma_m / sqrt(count) (the noisy mean
+  // does; averaging only lowers it). A halo (the block's energy in their fits) is orders of
+  // magnitude beyond: one part in 10^4 of the block's weight is already 0.03 = 4 sigma_m.
+  Scene s;
+  s.sigma = 1.0f;  // noise added below, per region
+  const int cx = 32, cy = 32;
+  const auto in_block = [&](int x, int y) { return std::abs(x - cx) <= 1 && std::abs(y - cy) <= 1; };
+  s.color = [&](int x, int y) { return in_block(x, y) ? Rgb{300.0f, 300.0f, 300.0f} : Rgb{0.1f, 0.1f, 0.1f}; };
+  DenoiseInput in = make_input(s);  // unit-variance noise on each half
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x)
+      for (int k = 0; k < 3; ++k) {
+        const std::size_t j = 3 * (static_cast<std::size_t>(y) * s.width + x) + k;
+        const float level = s.color(x, y)[k], sigma = in_block(x, y) ? 60.0f : 0.01f;
+        in.color_even[j] = level + sigma * (in.color_even[j] - level);
+        in.color_odd[j] = level + sigma * (in.color_odd[j] - level);
+      }
+  const DenoiseResult r = denoise(in, {});
+  for (std::uint8_t o : r.outliers) ASSERT_EQ(o, 0);  // the highlight is confirmed by both halves
+  const double sigma_m = 0.01 / std::sqrt(2.0);
+  const int radius = DenoiseParams{}.radius;
+  double sum = 0.0;
+  int count = 0;
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x) {
+      if (in_block(x, y)) continue;
+      const std::size_t i = static_cast<std::size_t>(y) * s.width + x;
+      for (int k = 0; k < 3; ++k) ASSERT_NEAR(r.rgb[3 * i + k], 0.1f, 6 * sigma_m) << x << " " << y << " " << k;
+      if (std::max(std::abs(x - cx), std::abs(y - cy)) <= radius) {
+        for (int k = 0; k < 3; ++k) sum += r.rgb[3 * i + k];
+        count += 3;
+      }
+    }
+  EXPECT_NEAR(sum / count, 0.1, 4 * sigma_m / std::sqrt(count));
+  // The highlight keeps its energy: within 20% of 300 (its noisy mean has 60 / sqrt(2) / 3 =
+  // 14 standard error per channel over the 9 pixels, about 5%).
+  double block = 0.0;
+  for (int y = cy - 1; y <= cy + 1; ++y)
+    for (int x = cx - 1; x <= cx + 1; ++x)
+      for (int k = 0; k < 3; ++k) block += r.rgb[3 * (static_cast<std::size_t>(y) * s.width + x) + k];
+  EXPECT_NEAR(block / 27, 300.0, 60.0);
+}
+
+TEST(Denoiser, SmallDetailsNoFeatureMarksKeepTheirValue) {
+  // Small emissive details that no feature marks (the helmet's eye pupils): single pixels at
+  // 5 on a flat 0.5, every 16 pixels, in both halves, with per-half noise sigma 0.05. Each
+  // dot must keep its value within 10% (its noisy mean's standard error is 0.7%), by
+  // whichever candidate: a filter that spreads it has an estimated error of order 4^2 there,
+  // far above the unfiltered colour's (its variance, 1.25e-3). Away from the dots (beyond the
+  // selection box and its blend) the noise is what matters: a filter is chosen.
+  Scene s;
+  s.sigma = 0.05f;
+  const auto dot = [](int x, int y) { return x % 16 == 8 && y % 16 == 8; };
+  s.color = [dot](int x, int y) { return dot(x, y) ? Rgb{5.0f, 5.0f, 5.0f} : Rgb{0.5f, 0.5f, 0.5f}; };
+  const DenoiseResult r = denoise(make_input(s), {});
+  const DenoiseParams p;
+  int far = 0, far_filtered = 0;
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * s.width + x;
+      if (dot(x, y)) {
+        for (int k = 0; k < 3; ++k) EXPECT_NEAR(r.rgb[3 * i + k], 5.0f, 0.5f) << x << " " << y;
+        continue;
+      }
+      const int dx = std::abs((x % 16) - 8), dy = std::abs((y % 16) - 8);
+      if (std::max(dx, dy) <= p.selection_radius + p.selection_blend_radius) continue;
+      ++far;
+      far_filtered += r.selected[i] != denoiser::kUnfiltered;
+    }
+  EXPECT_GT(far_filtered, 0.9 * far) << far_filtered << " of " << far;
+}
+
+TEST(DenoiserSelection, TheUnfilteredColourIsChosenWhereEveryFilterIsWorse) {
+  // The selection on its own: noisy halves of a flat 0.5 (sigma 0.05 per half, so each
+  // half's variance is 2.5e-3), and filtered candidates fabricated to be exact (0.5) on the
+  // right half of the image and off by 0.2 on the left (error 0.04, 16x the variance; both
+  // bandwidths alike). Left of the boundary by more than the selection box and its blend,
+  // the unfiltered candidate must be chosen and the output be the noisy colour; right of it,
+  // a filter, and the output is 0.5. In between, the blend mixes them (no seam).
+  Scene s;
+  s.sigma = 0.05f;
+  const DenoiseInput in = make_input(s);
+  const DenoiseParams p;
+  const denoiser::Halves halves = denoiser::prepare_halves(in, p);
+  denoiser::Filtered f;
+  for (int h = 0; h < 2; ++h)
+    for (int c = 0; c < 2; ++c) {
+      f.filtered[h][c] = denoiser::Planes(s.width, s.height, 3);
+      for (int y = 0; y < s.height; ++y)
+        for (int x = 0; x < s.width; ++x)
+          for (int k = 0; k < 3; ++k) f.filtered[h][c].at(k, y * s.width + x) = x < s.width / 2 ? 0.7f : 0.5f;
+    }
+  const denoiser::Selection sel = denoiser::select_and_combine(halves, f, p.selection_radius, p.selection_blend_radius);
+  const int margin = p.selection_radius + p.selection_blend_radius;
+  const std::vector<float> noisy = noisy_mean(in);
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * s.width + x;
+      if (x < s.width / 2 - margin) {
+        ASSERT_EQ(sel.chosen[i], denoiser::kUnfiltered) << x << " " << y;
+        for (int k = 0; k < 3; ++k) ASSERT_NEAR(sel.rgb.at(k, i), noisy[3 * i + k], 1e-6f);
+      } else if (x >= s.width / 2 + margin) {
+        ASSERT_NE(sel.chosen[i], denoiser::kUnfiltered) << x << " " << y;
+        for (int k = 0; k < 3; ++k) ASSERT_NEAR(sel.rgb.at(k, i), 0.5f, 1e-6f);
+      }
+    }
 }
 
 TEST(Denoiser, SameBitsForAnyThreadCount) {
