@@ -49,7 +49,7 @@ struct DenoiseParams {
   float feature_bandwidth = 1.0f;
   int variance_radius = 2;  // the 1-dof per-pixel variance is averaged over (2 r + 1)^2 pixels
   int selection_radius = 3;  // the estimated error of each candidate is averaged likewise
-  int selection_blend_radius = 1;  // each pixel blends the candidates chosen in its (2 r + 1)^2 box
+  int selection_blend_radius = 3;  // each pixel blends the candidates chosen in its (2 r + 1)^2 box
   float ridge = 1e-3f;  // Tikhonov term on the feature coefficients, relative to the weight sum
 };
 
