@@ -25,11 +25,7 @@ constexpr float kBackground = 0.2f;
 // floor and sphere under a small emitter, with a soft shadow and indirect light (noisy).
 const RenderScene& scene() {
   static const RenderScene* s = [] {
-    SceneDescription d;
-    const int white = test::add_material(d, test::diffuse(vec3(0.7f)));
-    test::add_mesh(d, test::make_quad({0, -1, 0}, {2, 0, 0}, {0, 0, -2}, white));
-    test::add_mesh(d, test::make_sphere({0, -0.5f, 0}, 0.5f, 2, white));
-    test::add_mesh(d, test::make_quad({0, 1, 0}, {0.3f, 0, 0}, {0, 0, 0.3f}, test::add_material(d, test::emitter(vec3(5)))));
+    SceneDescription d = test::lit_floor_and_sphere();
     EnvironmentParams env;
     env.background = vec3(kBackground);
     return new RenderScene(std::move(d), env);

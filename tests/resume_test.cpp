@@ -17,11 +17,7 @@ namespace {
 // A floor, a sphere, an emitter and a point light: every kind of path takes part.
 const RenderScene& scene() {
   static const RenderScene* s = [] {
-    SceneDescription d;
-    const int white = test::add_material(d, test::diffuse(vec3(0.7f)));
-    test::add_mesh(d, test::make_quad({0, -1, 0}, {2, 0, 0}, {0, 0, -2}, white));
-    test::add_mesh(d, test::make_sphere({0, -0.5f, 0}, 0.5f, 2, white));
-    test::add_mesh(d, test::make_quad({0, 1, 0}, {0.3f, 0, 0}, {0, 0, 0.3f}, test::add_material(d, test::emitter(vec3(5)))));
+    SceneDescription d = test::lit_floor_and_sphere();
     PunctualLight point;
     point.position = {1, 1, 1};
     point.intensity = 3.0f;

@@ -95,6 +95,15 @@ Camera look_at(glm::vec3 eye, glm::vec3 target, float yfov_degrees) {
   return c;
 }
 
+SceneDescription lit_floor_and_sphere() {
+  SceneDescription d;
+  const int white = add_material(d, diffuse(glm::vec3(0.7f)));
+  add_mesh(d, make_quad({0, -1, 0}, {2, 0, 0}, {0, 0, -2}, white));
+  add_mesh(d, make_sphere({0, -0.5f, 0}, 0.5f, 2, white));
+  add_mesh(d, make_quad({0, 1, 0}, {0.3f, 0, 0}, {0, 0, 0.3f}, add_material(d, emitter(glm::vec3(5)))));
+  return d;
+}
+
 double floor_under_square_emitter(double a, double h, double le, double albedo) {
   auto corner = [](double x, double y) {
     return (x / std::sqrt(1 + x * x) * std::atan(y / std::sqrt(1 + x * x)) +

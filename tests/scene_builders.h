@@ -24,6 +24,10 @@ Material emitter(glm::vec3 radiance);  // black diffuse that emits `radiance`
 // A perspective camera at `eye` looking at `target` with +Y up.
 Camera look_at(glm::vec3 eye, glm::vec3 target, float yfov_degrees);
 
+// A diffuse floor and sphere (albedo 0.7) under a small square emitter of radiance 5: soft
+// shadows and indirect light, noisy everywhere but where rays see only the background.
+SceneDescription lit_floor_and_sphere();
+
 // A diffuse floor of `albedo` under a square emitter of radiance `le` (half side a, height
 // h, facing down): the radiance of the point below the emitter's centre, albedo/pi * Le * pi
 // * 4 F(a/h, a/h), with F the corner form factor of a parallel rectangle (Howell's
