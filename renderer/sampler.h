@@ -69,9 +69,10 @@ class Sampler {
       }
       return v;
     }
-    const std::uint32_t index = owen_scramble(sample_, static_cast<std::uint32_t>(key));
+    // The shuffled index stays bit-reversed: scrambled_sobol takes it so.
+    const std::uint32_t index = laine_karras(reverse_bits(sample_), static_cast<std::uint32_t>(key));
     for (int d = 0; d < n; ++d)
-      v[d] = bits_to_unit_float(owen_scramble(sobol_bits(index, d), static_cast<std::uint32_t>(mix64(key ^ (d + 1)))));
+      v[d] = bits_to_unit_float(scrambled_sobol(index, d, static_cast<std::uint32_t>(mix64(key ^ (d + 1)))));
     return v;
   }
 
