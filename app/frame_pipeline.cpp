@@ -10,6 +10,7 @@
 #include "app/exit_codes.h"
 #include "app/frame_denoise.h"
 #include "app/memory_check.h"
+#include "app/profile_outputs.h"
 #include "app/render_setup.h"
 #include "renderer/adaptive_sampling.h"
 
@@ -67,7 +68,7 @@ void plan_sampling(const RenderOptions& o, RenderSettings& s) {
   if (o.min_spp > 0 && o.noise_threshold <= 0.0f) throw UsageError("--min-spp: needs --noise-threshold");
   s.scheduler = parse_scheduler(o.scheduler);
   s.tile_order = parse_tile_order(o.tile_order);
-  s.record_tiles = !o.stats_json.empty() || !o.trace.empty() || !o.heatmap.empty();
+  s.record_tiles = ProfileOutputs{o.stats_json, o.trace, o.heatmap}.needs_tile_records();
   s.time_limit = o.time_limit;
 }
 
