@@ -21,6 +21,8 @@ struct RenderOptions {
   std::string stats_json, trace, heatmap;  // load-balancing outputs, empty: none
   long long seed = 0;
   std::string sampler = "sobol";
+  std::string pixel_filter = "blackman-harris";
+  float filter_width = 0.0f;  // 0: the filter's default
   std::string camera, scene;
   float aperture = 0.0f, focus_distance = 0.0f, fov = 0.0f;
   std::string background = "auto";

@@ -64,6 +64,7 @@ void plan_sampling(const RenderOptions& o, RenderSettings& s) {
   s.clamp = o.clamp;
   s.seed = static_cast<std::uint32_t>(o.seed);
   s.sampler = parse_sampler(o.sampler);
+  s.filter = {parse_pixel_filter(o.pixel_filter), o.filter_width};
   s.adaptive = {o.noise_threshold, o.min_spp};
   if (o.min_spp > 0 && o.noise_threshold <= 0.0f) throw UsageError("--min-spp: needs --noise-threshold");
   s.scheduler = parse_scheduler(o.scheduler);
@@ -137,6 +138,7 @@ ImageWriteParams frame_write_params(const RenderOptions& o, const FramePlan& pla
   meta.render_seconds = stats.seconds;
   meta.seed = settings.seed;
   meta.sampler = sampler_name(settings.sampler);
+  meta.pixel_filter = describe(settings.filter);
   meta.threads = stats.threads;
   meta.tile_size = settings.tile_size;
   meta.max_bounces = settings.max_bounces;

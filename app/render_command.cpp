@@ -57,6 +57,12 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
                   "less noise at the same spp), independent (white noise, for comparison). Same image for any "
                   "thread count with either")
       ->check(CLI::IsMember(sampler_names()))->capture_default_str();
+  cmd->add_option("--pixel-filter", o.pixel_filter,
+                  "Pixel reconstruction filter, importance-sampled: blackman-harris (Cycles' default: sharp, "
+                  "little aliasing or edge noise), gaussian, box (each sample inside its own pixel)")
+      ->check(CLI::IsMember(pixel_filter_names()))->capture_default_str();
+  cmd->add_option("--filter-width", o.filter_width, "Pixel filter's whole width in pixels [default: box 1, others 1.5]")
+      ->check(CLI::Range(0.5f, 8.0f));
   cmd->add_option("--camera", o.camera, "Camera by index or name [default: the scene's first, else an automatic camera framing the scene]");
   cmd->add_option("--scene", o.scene, "glTF scene by index or name [default: the file's default scene, else 0]");
   cmd->add_option("--aperture", o.aperture, "Thin-lens aperture diameter in scene units (0: pinhole)")

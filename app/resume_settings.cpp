@@ -1,5 +1,6 @@
 #include "app/resume_settings.h"
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 #include <utility>
@@ -64,6 +65,12 @@ std::string resume_settings(const RenderOptions& o, const RenderSettings& s, con
   text += fmt::format("envmap-bytes={}\nenvmap-scale={}\nenvmap-rotate={}\n",
                       env.image_path.empty() ? "none" : hash_file(env.image_path), env.scale, env.rotate_degrees);
   text += fmt::format("aovs={}\n", aovs.empty() ? "none" : aovs);
+  // Each only when it differs from what frames before it had (box pixels, MIS, no clamp), so
+  // those still resume; the check compares both ways, so a change is never missed.
+  if (describe(s.filter) != "box 1") text += fmt::format("pixel-filter={}\n", describe(s.filter));
+  if (s.light_sampling != LightSampling::Mis)
+    text += fmt::format("light-sampling={}\n", s.light_sampling == LightSampling::BsdfOnly ? "bsdf" : "lights");
+  if (s.clamp > 0.0f) text += fmt::format("clamp={}\n", s.clamp);
   // Only with adaptive sampling, so frames from before it still resume; the check below
   // compares both ways, so neither side can drop these lines unnoticed.
   if (s.adaptive.on())
@@ -73,9 +80,15 @@ std::string resume_settings(const RenderOptions& o, const RenderSettings& s, con
 
 namespace {
 
+// A line is left out when its setting is what frames had before the line existed.
+const std::pair<const char*, const char*> kUnwrittenDefaults[] = {
+    {"pixel-filter", "box 1"}, {"light-sampling", "mis"}, {"clamp", "0"}};
+
 std::string value_of(const std::vector<std::pair<std::string, std::string>>& lines, const std::string& key) {
   for (const auto& [k, v] : lines)
     if (k == key) return v;
+  for (const auto& [k, v] : kUnwrittenDefaults)
+    if (key == k) return v;
   return "(nothing)";
 }
 
@@ -84,8 +97,10 @@ std::string value_of(const std::vector<std::pair<std::string, std::string>>& lin
 void check_resume_settings(const std::string& path, const std::string& stored, const std::string& current) {
   const auto then = parse_lines(stored), now_lines = parse_lines(current);
   auto keys = now_lines;  // this render's settings, then any the file has that it lacks
-  for (const auto& line : then)
-    if (value_of(now_lines, line.first) == "(nothing)") keys.push_back(line);
+  for (const auto& line : then) {
+    const bool listed = std::any_of(keys.begin(), keys.end(), [&](const auto& k) { return k.first == line.first; });
+    if (!listed) keys.push_back(line);
+  }
   for (const auto& line : keys) {
     const std::string& key = line.first;
     const std::string was = value_of(then, key), now = value_of(now_lines, key);

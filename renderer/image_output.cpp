@@ -109,6 +109,7 @@ void write_exr(const std::string& path, const FrameImage& img, const ImageWriteP
   header.insert("renderTimeSeconds", Imf::DoubleAttribute(m.render_seconds));
   header.insert("seed", Imf::IntAttribute(static_cast<int>(m.seed)));
   if (!m.sampler.empty()) header.insert("sampler", Imf::StringAttribute(m.sampler));
+  if (!m.pixel_filter.empty()) header.insert("pixelFilter", Imf::StringAttribute(m.pixel_filter));
   header.insert("threads", Imf::IntAttribute(m.threads));
   header.insert("tileSize", Imf::IntAttribute(m.tile_size));
   header.insert("maxBounces", Imf::IntAttribute(m.max_bounces));

@@ -31,6 +31,7 @@ struct FrameMetadata {
   double render_seconds = 0.0;
   std::uint32_t seed = 0;
   std::string sampler;  // the sample pattern's name
+  std::string pixel_filter;  // "NAME WIDTH"
   int threads = 0, tile_size = 0, max_bounces = 0;
   std::uint64_t dropped_samples = 0;
   glm::mat4 world_to_camera{1.0f}, world_to_ndc{1.0f};

@@ -44,8 +44,9 @@ void add_sample(PixelSums& p, int s, const glm::dvec3& radiance, const FirstHit&
 }
 
 // The samples [first_sample, wave.end) of every pixel of one tile.
-void render_tile(const RenderScene& scene, const RenderCamera& camera, const RenderSettings& settings,
-                 const Tile& tile, SampleWave wave, Film& film, TileCounters& counters) {
+void render_tile(const RenderScene& scene, const RenderCamera& camera, const PixelFilter& filter,
+                 const RenderSettings& settings, const Tile& tile, SampleWave wave, Film& film,
+                 TileCounters& counters) {
   PathTracerParams params;
   params.max_bounces = settings.max_bounces;
   params.light_sampling = settings.light_sampling;
@@ -59,9 +60,9 @@ void render_tile(const RenderScene& scene, const RenderCamera& camera, const Ren
       PixelSums sums;
       for (int s = begin; s < wave.end; ++s) {
         Sampler rng(settings.sampler, x, y, s, settings.seed);
-        const vec2 jitter = rng.next2();
+        const vec2 at = filter.sample(rng.next2());
         const vec2 lens = rng.next2();
-        const Ray ray = camera.generate_ray({(x + jitter.x) * inv_w, (y + jitter.y) * inv_h}, lens);
+        const Ray ray = camera.generate_ray({(x + at.x) * inv_w, (y + at.y) * inv_h}, lens);
         if (!is_finite(ray.origin) || !is_finite(ray.direction)) {  // a degenerate camera: Embree
           ++counters.path.dropped;                                 // would abort on such a ray
           ++sums.samples;
@@ -144,6 +145,7 @@ RenderResult render_frame(const RenderScene& scene, const RenderCamera& camera,
       out_of_time.store(true, std::memory_order_relaxed);
     return out_of_time.load(std::memory_order_relaxed);
   };
+  const PixelFilter filter(settings.filter);
   WaveRunner runner(plan);
   for (std::size_t w = 0; w < waves.size(); ++w) {
     if (wave_already_done(film, waves[w], min_spp)) continue;  // resumed past it
@@ -155,7 +157,7 @@ RenderResult render_frame(const RenderScene& scene, const RenderCamera& camera,
       run.start = recorder.now();
       run.cpu = ProfileRecorder::thread_cpu_seconds();
       TileCounters c;
-      render_tile(scene, camera, settings, plan.items[i].rect, waves[w], film, c);
+      render_tile(scene, camera, filter, settings, plan.items[i].rect, waves[w], film, c);
       run.cpu = ProfileRecorder::thread_cpu_seconds() - run.cpu;
       run.end = recorder.now();
       run.samples = c.samples;

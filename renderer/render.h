@@ -10,6 +10,7 @@
 #include "renderer/adaptive_sampling.h"
 #include "renderer/camera.h"
 #include "renderer/film.h"
+#include "renderer/pixel_filter.h"
 #include "renderer/integrator/path_tracer.h"
 #include "renderer/render_scene.h"
 #include "renderer/render_stats.h"
@@ -26,6 +27,7 @@ struct RenderSettings {
   int tile_size = 32;
   std::uint32_t seed = 0;
   SamplerKind sampler = SamplerKind::sobol;
+  PixelFilterParams filter;
   AovSelection aovs;
   SchedulerKind scheduler = SchedulerKind::tiles;
   TileOrder tile_order = TileOrder::scanline;

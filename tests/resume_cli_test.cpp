@@ -141,6 +141,20 @@ TEST_F(ResumeMismatch, AnotherSeedSizeOrCameraIsRefused) {
   }
 }
 
+// Settings that change what a sample adds: the pixel filter, light sampling and clamping.
+TEST_F(ResumeMismatch, AnotherPixelFilterLightSamplingOrClampIsRefused) {
+  const std::pair<std::string, std::string> cases[] = {
+      {" --pixel-filter box", "pixel-filter differs: the file has blackman-harris 1.5, this render box 1"},
+      {" --filter-width 2", "pixel-filter differs: the file has blackman-harris 1.5, this render blackman-harris 2"},
+      {" --light-sampling bsdf", "light-sampling differs: the file has mis, this render bsdf"},
+      {" --clamp 10", "clamp differs: the file has 0, this render 10"}};
+  for (const auto& [args, message] : cases) {
+    const auto r = resume(cornell(), kSettings + args);
+    EXPECT_EQ(r.exit_code, 2) << args;
+    EXPECT_NE(r.err.find(message), std::string::npos) << args << ": " << r.err;
+  }
+}
+
 TEST_F(ResumeMismatch, AnotherSceneFileIsRefused) {
   // The same scene with one more byte: another file, however alike.
   fs::copy_file(test::scene_path("cornell-box/cornell-box.bin"), dir_ + "/cornell-box.bin");

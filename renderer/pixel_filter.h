@@ -1,0 +1,59 @@
+// The pixel reconstruction filter, by filter importance sampling (Ernst et al. 2006, as Cycles
+// and pbrt-v4 do it): each camera sample lands at an offset from the pixel centre drawn in
+// proportion to the filter, and counts in that pixel alone with weight 1. A pixel's value is
+// then the filter-weighted average of the image around it, each sample still belongs to one
+// pixel (tiles, resume and adaptive sampling are untouched), and the filter's tails cost no
+// extra variance. Non-negative separable filters only: f(x, y) = f(x) f(y).
+//   box:             width 1 by default: the pixel's own square, the offset the raw jitter.
+//   gaussian:        exp(-2 (6x/width)^2), Cycles' form (sigma = width / 12).
+//   blackman-harris: Cycles' default (width 1.5): a bell with nearly no tails, less aliasing
+//                    and less edge noise than the box at the same sharpness.
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "renderer/math.h"
+
+namespace tessera {
+
+enum class PixelFilterKind : std::uint8_t { box, gaussian, blackman_harris };
+
+const std::vector<std::string>& pixel_filter_names();
+const char* pixel_filter_name(PixelFilterKind kind);
+PixelFilterKind parse_pixel_filter(const std::string& name);  // throws std::invalid_argument
+
+struct PixelFilterParams {
+  PixelFilterKind kind = PixelFilterKind::blackman_harris;
+  float width = 0.0f;  // pixels, the filter's whole support; 0 = its default (box 1, others 1.5)
+};
+
+float default_filter_width(PixelFilterKind kind);
+float filter_width(const PixelFilterParams& p);  // the width in effect
+std::string describe(const PixelFilterParams& p);  // "blackman-harris 1.5": headers and resume
+
+// The filter's 1D profile at x (pixels from the centre, |x| <= width / 2); not normalised.
+float pixel_filter_value(PixelFilterKind kind, float width, float x);
+
+class PixelFilter {
+ public:
+  explicit PixelFilter(const PixelFilterParams& p);
+  // Where in pixel (x, y) the sample with the 2D draw u falls: (x, y) + the result, the
+  // pixel's square being [0,1)^2 (so the box of width 1 returns u unchanged).
+  vec2 sample(const vec2& u) const { return box_ ? u : vec2(sample_1d(u.x), sample_1d(u.y)); }
+
+ private:
+  float sample_1d(float u) const {
+    const float t = u * static_cast<float>(inverse_cdf_.size() - 1);
+    const std::size_t i = std::min(static_cast<std::size_t>(t), inverse_cdf_.size() - 2);
+    return inverse_cdf_[i] + (t - static_cast<float>(i)) * (inverse_cdf_[i + 1] - inverse_cdf_[i]);
+  }
+  bool box_;
+  // The inverse of the profile's CDF at u = k / (size - 1), as offsets in the pixel, read
+  // with a lerp: a search in the CDF instead cost 15% of a simple scene's render time.
+  std::vector<float> inverse_cdf_;
+};
+
+}  // namespace tessera
