@@ -1,5 +1,6 @@
 #include "renderer/pixel_filter.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -9,10 +10,9 @@
 namespace tessera {
 namespace {
 
-// The profile in bins of width/16384 pixel, its inverse at 65537 points (256 KiB): fine
-// enough that even the tails' shape is kept (a Cycles-like 1024 points flattens them).
+// The profile from the centre out in bins of width/32768 pixel: its integral is exact to
+// far below what the table's interpolation resolves.
 constexpr int kProfileBins = 16384;
-constexpr int kInverseSize = 65536;
 
 }  // namespace
 
@@ -53,19 +53,19 @@ float pixel_filter_value(PixelFilterKind kind, float width, float x) {
 
 PixelFilter::PixelFilter(const PixelFilterParams& p) : box_(describe(p) == "box 1") {
   if (box_) return;
-  const float width = filter_width(p);
-  std::vector<double> cdf(kProfileBins + 1, 0.0);  // at the bins' edges
+  const float half = 0.5f * filter_width(p);
+  std::vector<double> cdf(kProfileBins + 1, 0.0);  // of the distance from the centre, at the bins' edges
   for (int i = 0; i < kProfileBins; ++i)
-    cdf[i + 1] = cdf[i] + pixel_filter_value(p.kind, width, width * ((i + 0.5f) / kProfileBins - 0.5f));
-  // Invert the piecewise-linear CDF at evenly spaced u, walking both in step.
-  inverse_cdf_.resize(kInverseSize + 1);
+    cdf[i + 1] = cdf[i] + pixel_filter_value(p.kind, 2.0f * half, half * (i + 0.5f) / kProfileBins);
+  // Invert the piecewise-linear CDF at v = 1 - (1 - s)^2, walking both in step.
+  distance_.resize(kTableSize + 1);
   int bin = 0;
-  for (int k = 0; k <= kInverseSize; ++k) {
-    const double target = cdf.back() * k / kInverseSize;
+  for (int k = 0; k <= kTableSize; ++k) {
+    const double s = static_cast<double>(k) / kTableSize;
+    const double target = cdf.back() * (1.0 - (1.0 - s) * (1.0 - s));
     while (bin + 1 < kProfileBins && cdf[bin + 1] < target) ++bin;
     const double in_bin = cdf[bin + 1] > cdf[bin] ? (target - cdf[bin]) / (cdf[bin + 1] - cdf[bin]) : 0.0;
-    const double x = (bin + std::clamp(in_bin, 0.0, 1.0)) / kProfileBins;  // in [0, 1] across the width
-    inverse_cdf_[k] = static_cast<float>(0.5 + width * (x - 0.5));
+    distance_[k] = static_cast<float>(half * (bin + std::clamp(in_bin, 0.0, 1.0)) / kProfileBins);
   }
 }
 

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -45,15 +46,21 @@ class PixelFilter {
   vec2 sample(const vec2& u) const { return box_ ? u : vec2(sample_1d(u.x), sample_1d(u.y)); }
 
  private:
+  // The filters are symmetric: the sign from which half u is in, the distance from the
+  // centre from v = |2u - 1| through the table, read at s = 1 - sqrt(1 - v) so that its
+  // points crowd into the tails, where the profile's mass thins out.
   float sample_1d(float u) const {
-    const float t = u * static_cast<float>(inverse_cdf_.size() - 1);
-    const std::size_t i = std::min(static_cast<std::size_t>(t), inverse_cdf_.size() - 2);
-    return inverse_cdf_[i] + (t - static_cast<float>(i)) * (inverse_cdf_[i + 1] - inverse_cdf_[i]);
+    const float v = std::fabs(2.0f * u - 1.0f);
+    const float t = (1.0f - std::sqrt(1.0f - v)) * static_cast<float>(kTableSize);
+    const int i = std::min(static_cast<int>(t), kTableSize - 1);
+    const float r = distance_[i] + (t - static_cast<float>(i)) * (distance_[i + 1] - distance_[i]);
+    return u < 0.5f ? 0.5f - r : 0.5f + r;
   }
+  // 4097 floats (16 KiB) stay in cache beside the BVH; a uniform 64K-point table of the
+  // whole CDF, as accurate, cost 4% of a simple scene's render in cache misses.
+  static constexpr int kTableSize = 4096;
   bool box_;
-  // The inverse of the profile's CDF at u = k / (size - 1), as offsets in the pixel, read
-  // with a lerp: a search in the CDF instead cost 15% of a simple scene's render time.
-  std::vector<float> inverse_cdf_;
+  std::vector<float> distance_;  // from the centre, at s = k / kTableSize
 };
 
 }  // namespace tessera
