@@ -75,13 +75,14 @@ TEST(GltfBsdf, SamplingMatchesItsPdfChiSquare) {
         Sampler rng(SamplerKind::independent, i, 0, 0, 17);
         BsdfSample s;
         const float u = rng.next();
-        if (!bsdf.sample(wo, u, rng.next2(), s)) return std::nullopt;
+        // A thin surface's straight pass is a delta: outside the density, like a failure.
+        if (!bsdf.sample(wo, u, rng.next2(), s) || s.passthrough) return std::nullopt;
         return s.wi;
       };
       auto pdf = [&](const glm::vec3& wi) { return bsdf.pdf(wo, wi); };
       const test::ChiSquareResult r = test::chi_square_test(sample, pdf, 200000);
       EXPECT_GT(r.p_value, alpha) << c.name << " theta " << theta << ": chi2 " << r.statistic << " dof " << r.dof;
-      // The pdf's integral is the probability that sampling succeeds.
+      // The pdf's integral is the probability that sampling succeeds (and is not the pass).
       EXPECT_NEAR(r.pdf_integral, r.sampled_fraction, 0.01) << c.name << " theta " << theta;
     }
   }
@@ -97,6 +98,13 @@ TEST(GltfBsdf, SampleAgreesWithEvalAndPdf) {
       BsdfSample s;
       const float u = rng.next();
       if (!bsdf.sample(wo, u, rng.next2(), s)) continue;
+      if (s.passthrough) {  // the straight pass: probability and weight of its own
+        ASSERT_EQ(s.wi, -wo) << c.name;
+        ASSERT_FLOAT_EQ(s.pdf, bsdf.lobe_probability(GltfBsdf::kTransmission)) << c.name;
+        for (int k = 0; k < 3; ++k) ASSERT_FLOAT_EQ(s.f[k] * wo.z, bsdf.straight_transmittance()[k]) << c.name;
+        ASSERT_EQ(bsdf.eval(wo, s.wi), vec3(0.0f)) << c.name;  // a delta: never evaluated
+        continue;
+      }
       ASSERT_FLOAT_EQ(s.pdf, bsdf.pdf(wo, s.wi)) << c.name;
       ASSERT_EQ(s.f, bsdf.eval(wo, s.wi)) << c.name;
       ASSERT_EQ(s.transmitted, s.wi.z < 0.0f) << c.name;
@@ -227,7 +235,9 @@ TEST(GltfBsdf, WhiteFurnaceEveryLosslessMaterialIsOne) {
         const std::string where = std::string(c.name) + " roughness " + std::to_string(roughness) + " theta " +
                                   std::to_string(theta);
         EXPECT_NEAR(a.sampled, 1.0, 0.01) << where;
-        if (quadrature) EXPECT_NEAR(a.quadrature, 1.0, 0.01) << where;
+        if (quadrature) {
+          EXPECT_NEAR(a.quadrature, 1.0, 0.01) << where;
+        }
       }
   }
 }
@@ -315,7 +325,9 @@ TEST(MicrofacetAlbedo, TablesMatchUniformSphereIntegration) {
             }
           }
         const std::string where = "roughness " + std::to_string(roughness) + " mu " + std::to_string(mu);
-        if (eta > 1.0f) EXPECT_NEAR(ggx_schlick_albedo(mu, roughness), e5, 0.003) << where;
+        if (eta > 1.0f) {
+          EXPECT_NEAR(ggx_schlick_albedo(mu, roughness), e5, 0.003) << where;
+        }
         // The sum is the compensation; the split only sets the diffuse base's share, and is
         // interpolated across the critical angle of the leaving side (cos 0.745 here).
         const InterfaceAlbedo table = dielectric_albedo(mu, roughness, eta);

@@ -173,5 +173,39 @@ TEST(RenderClosedForm, FloorUnderASquareEmitterMatchesTheFormFactor) {
   EXPECT_LT(stderr_pixel, 0.02 * expected);
 }
 
+// The same floor and light with a thin glass pane between them (smooth, ior 1.5, thin-walled
+// transmission 1). Near normal incidence the pane passes 1 - F0 = 1 - 0.04 of the light
+// (Schlick's term at the light's widest angle here, 19 degrees, adds under 1e-5), so the
+// floor shows the form factor times 0.96. Shadow rays pass the pane with that transmittance,
+// so light sampling and BSDF sampling (through the pane's straight pass) agree on it, and
+// with both the floor is far less noisy than by BSDF sampling alone, which is what tessera
+// had while shadow rays stopped at glass.
+TEST(RenderClosedForm, ThinGlassPaneTransmitsTheFormFactorTimesOneMinusF0) {
+  const float a = 0.25f, h = 1.0f, le = 4.0f, albedo = 0.5f;
+  SceneDescription scene;
+  add_mesh(scene, test::make_quad({0, 0, 0}, {5, 0, 0}, {0, 0, -5}, add_material(scene, test::diffuse(vec3(albedo)))));
+  add_mesh(scene, test::make_quad({0, h, 0}, {a, 0, 0}, {0, 0, a}, add_material(scene, test::emitter(vec3(le)))));
+  Material glass = test::diffuse(vec3(1.0f));
+  glass.specular_factor = 1.0f;
+  glass.roughness_factor = 0.0f;
+  glass.transmission_factor = 1.0f;  // no thickness: thin-walled
+  add_mesh(scene, test::make_quad({0, 0.75f, 0}, {0.6f, 0, 0}, {0, 0, 0.6f}, add_material(scene, glass)));
+  const double expected = test::floor_under_square_emitter(a, h, le, albedo) * (1.0 - 0.04);
+  PixelStats by_mode[2];
+  for (const LightSampling mode : {LightSampling::Mis, LightSampling::BsdfOnly}) {
+    RenderSettings s;
+    s.width = s.height = 5;
+    s.spp = 1024;
+    s.max_bounces = 1;
+    s.light_sampling = mode;
+    const RenderResult r = render(scene, test::look_at({0, 0.5f, 3}, {0, 0, 0}, 0.1f), s, vec3(0));
+    const PixelStats st = stats_of(r.image);
+    const double stderr_mean = std::sqrt(st.variance / 25.0);
+    EXPECT_NEAR(st.mean, expected, 4.0 * stderr_mean + 2e-3 * expected) << (mode == LightSampling::Mis ? "mis" : "bsdf");
+    by_mode[mode == LightSampling::Mis ? 0 : 1] = st;
+  }
+  EXPECT_GT(by_mode[1].variance, 10.0 * by_mode[0].variance);
+}
+
 }  // namespace
 }  // namespace tessera

@@ -5,9 +5,6 @@ namespace {
 
 float max3(const vec3& v) { return max_component(v); }
 
-// Thin-walled transmission mirrors the reflected direction through the surface plane.
-vec3 mirror_z(const vec3& w) { return {w.x, w.y, -w.z}; }
-
 }  // namespace
 
 GltfBsdf::GltfBsdf(const ShadingPoint& sp, const vec3& wo, float eta)
@@ -47,6 +44,8 @@ GltfBsdf::GltfBsdf(const ShadingPoint& sp, const vec3& wo, float eta)
   w[kMultiScatter] = metallic_ * (1.0f - e_o_) * max3(multiscatter_color_) * kPi * (1.0f - ggx_albedo_average(roughness_));
   w[kTransmission] = dielectric * transmission_ * std::fmax(1.0f - fo, 0.05f) * tint;
   const float under_sheen = sheen_scaling(wo);
+  if (!refracts_ && transmission_ > 0.0f)
+    straight_ = coat_scale_ * under_sheen * dielectric * transmission_ * (1.0f - fo) * base_;
   for (int i = 0; i < kSheen; ++i) w[i] *= under_sheen;
   w[kSheen] = sheen_max_ > 0.0f ? sheen_max_ * sheen_albedo(wo.z, sheen_.alpha) : 0.0f;
   for (int i = 0; i < kClearcoat; ++i) w[i] *= coat_scale_;
@@ -128,25 +127,17 @@ vec3 GltfBsdf::reflection(const vec3& wo, const vec3& wi) const {
 }
 
 vec3 GltfBsdf::transmission(const vec3& wo, const vec3& wi) const {
-  if (transmission_ <= 0.0f || metallic_ >= 1.0f) return vec3(0.0f);
-  float ft;
-  if (!refracts_) {
-    const vec3 wr = mirror_z(wi);
-    const vec3 h = glm::normalize(wo + wr);
-    const float fd = max3(dielectric_fresnel(glm::dot(wo, h)));
-    ft = (1.0f - fd) * ggx_.D(h) * ggx_.G2(wo, wr) / (4.0f * wo.z * wr.z);
-  } else {
-    vec3 h = wi * eta_ + wo;
-    if (glm::dot(h, h) <= 0.0f) return vec3(0.0f);
-    h = glm::normalize(h);
-    if (h.z < 0.0f) h = -h;
-    const float cos_oh = glm::dot(wo, h), cos_ih = glm::dot(wi, h);
-    if (cos_oh <= 0.0f || cos_ih >= 0.0f) return vec3(0.0f);  // back-facing microfacet
-    const float f = fresnel_dielectric(cos_oh, eta_);
-    const float denom = sqr(cos_ih + cos_oh / eta_) * std::fabs(wi.z) * wo.z;
-    // Radiance is compressed by eta^2 entering a denser medium (non-symmetric scattering).
-    ft = ggx_.D(h) * (1.0f - f) * ggx_.G2(wo, wi) * std::fabs(cos_ih * cos_oh / denom) / sqr(eta_);
-  }
+  if (!refracts_ || metallic_ >= 1.0f) return vec3(0.0f);  // thin: a straight pass, not evaluable
+  vec3 h = wi * eta_ + wo;
+  if (glm::dot(h, h) <= 0.0f) return vec3(0.0f);
+  h = glm::normalize(h);
+  if (h.z < 0.0f) h = -h;
+  const float cos_oh = glm::dot(wo, h), cos_ih = glm::dot(wi, h);
+  if (cos_oh <= 0.0f || cos_ih >= 0.0f) return vec3(0.0f);  // back-facing microfacet
+  const float f = fresnel_dielectric(cos_oh, eta_);
+  const float denom = sqr(cos_ih + cos_oh / eta_) * std::fabs(wi.z) * wo.z;
+  // Radiance is compressed by eta^2 entering a denser medium (non-symmetric scattering).
+  const float ft = ggx_.D(h) * (1.0f - f) * ggx_.G2(wo, wi) * std::fabs(cos_ih * cos_oh / denom) / sqr(eta_);
   return (1.0f - metallic_) * transmission_ * interface_scale_ * base_ * ft;
 }
 
@@ -176,11 +167,7 @@ float GltfBsdf::lobe_pdf(int lobe, const vec3& wo, const vec3& wi) const {
       return d.visible_pdf(wo, h) / (4.0f * glm::dot(wo, h));
     }
     default: {  // transmission
-      if (wi.z >= 0.0f) return 0.0f;
-      if (!refracts_) {
-        const vec3 h = glm::normalize(wo + mirror_z(wi));
-        return ggx_.visible_pdf(wo, h) / (4.0f * glm::dot(wo, h));
-      }
+      if (wi.z >= 0.0f || !refracts_) return 0.0f;  // the thin pass is a delta
       vec3 h = wi * eta_ + wo;
       if (glm::dot(h, h) <= 0.0f) return 0.0f;
       h = glm::normalize(h);
@@ -217,13 +204,14 @@ bool GltfBsdf::sample(const vec3& wo, float u_lobe, const vec2& u, BsdfSample& s
     }
     case kClearcoat: s.wi = reflect(wo, coat_ggx_.sample_visible(wo, u)); break;
     default: {
-      const vec3 h = ggx_.sample_visible(wo, u);
-      if (!refracts_) {
-        s.wi = mirror_z(reflect(wo, h));
-        if (s.wi.z >= 0.0f) return false;
-      } else if (!refract(wo, h, eta_, s.wi)) {
-        return false;  // total internal reflection at this microfacet
+      if (!refracts_) {  // thin-walled: straight through, weight straight_ / probability
+        s.wi = -wo;
+        s.f = straight_ / wo.z;
+        s.pdf = weight_[kTransmission];
+        s.transmitted = s.passthrough = true;
+        return s.pdf > 0.0f;
       }
+      if (!refract(wo, ggx_.sample_visible(wo, u), eta_, s.wi)) return false;  // total internal reflection
     }
   }
   const bool below = lobe == kTransmission;

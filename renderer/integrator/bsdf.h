@@ -12,8 +12,9 @@
 // F is Schlick's with f0 = min(((ior-1)/(ior+1))^2 specularColor, 1) scaled by s = specular;
 // a refracting (volume) dielectric uses the exact Fresnel term instead, so glass conserves
 // energy and shows total internal reflection. btdf is a rough refraction (Walter et al.
-// 2007) when the material has a volume, or a straight pass through the surface when it is
-// thin-walled.
+// 2007) when the material has a volume, or, thin-walled, a straight pass through the
+// surface (a delta, as pbrt-v4's thin dielectric: roughness does not blur it), which shadow
+// rays also take.
 //
 // Energy compensation (microfacet_albedo.h): single-scattering GGX loses the light that
 // bounces among the microfacets, up to 60% at roughness 1. The metal gets Kulla and Conty's
@@ -41,6 +42,10 @@ struct BsdfSample {
   vec3 f{0.0f};  // BSDF value (whole mixture)
   float pdf = 0.0f;  // solid angle (whole mixture)
   bool transmitted = false;  // wi is below the surface
+  // A thin-walled surface's straight pass (a delta: wi = -wo): the path goes on as if the
+  // surface were not there, with f |cos| / pdf as its weight; light sampling reaches light
+  // through it by the same transmittance (straight_transmittance).
+  bool passthrough = false;
 };
 
 // Cosine-weighted direction on the upper hemisphere (Malley's method).
@@ -60,7 +65,12 @@ class GltfBsdf {
   float pdf(const vec3& wo, const vec3& wi) const;
   bool sample(const vec3& wo, float u_lobe, const vec2& u, BsdfSample& s) const;
 
-  bool has_transmission() const { return weight_[kTransmission] > 0.0f; }
+  // Whether eval() can be non-zero below the surface: refraction into a volume. (A thin
+  // surface's transmission is a straight pass, a delta that only sampling produces.)
+  bool has_transmission() const { return refracts_ && weight_[kTransmission] > 0.0f; }
+  // What a thin-walled transmissive surface lets straight through towards -wo: the share of
+  // the compensated interface that is not reflected, under the sheen and the coat.
+  vec3 straight_transmittance() const { return straight_; }
   float lobe_probability(Lobe lobe) const { return weight_[lobe]; }
 
  private:
@@ -86,6 +96,7 @@ class GltfBsdf {
   float e_o_ = 1.0f;  // E(mu_o) of the base lobe
   vec3 multiscatter_color_{0.0f};  // Kulla-Conty's Fresnel term / (pi (1 - avg E)); 0 = no lobe
   float coat_interface_scale_ = 1.0f;  // 1 / E_coat(mu_o)
+  vec3 straight_{0.0f};  // the thin-walled straight pass; 0 for a volume or no transmission
   GgxDistribution ggx_, coat_ggx_;
   vec3 sheen_color_;
   CharlieSheen sheen_;
