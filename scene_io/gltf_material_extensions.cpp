@@ -34,6 +34,12 @@ TextureRef texture(const tinygltf::Value& object, const char* key, const Texture
   return resolve(info.Get("index").GetNumberAsInt(), texcoord, extensions, key);
 }
 
+// The `scale` of a normalTextureInfo inside an extension.
+float texture_scale(const tinygltf::Value& object, const char* key) {
+  if (!object.IsObject() || !object.Has(key) || !object.Get(key).IsObject()) return 1.0f;
+  return number(object.Get(key), "scale", 1.0f);
+}
+
 }  // namespace
 
 void read_material_extensions(const tinygltf::Material& src, const TextureResolver& resolve,
@@ -66,6 +72,15 @@ void read_material_extensions(const tinygltf::Material& src, const TextureResolv
     mat.clearcoat_texture = texture(*e, "clearcoatTexture", resolve);
     mat.clearcoat_roughness_factor = number(*e, "clearcoatRoughnessFactor", 0.0f);
     mat.clearcoat_roughness_texture = texture(*e, "clearcoatRoughnessTexture", resolve);
+    mat.clearcoat_normal_texture = texture(*e, "clearcoatNormalTexture", resolve);
+    mat.clearcoat_normal_scale = texture_scale(*e, "clearcoatNormalTexture");
+  }
+  if (const tinygltf::Value* e = extension(src, "KHR_materials_anisotropy")) {
+    mat.anisotropy_strength = number(*e, "anisotropyStrength", 0.0f);
+    mat.anisotropy_rotation = number(*e, "anisotropyRotation", 0.0f);
+    mat.anisotropy_texture = texture(*e, "anisotropyTexture", resolve);
+    if (!(mat.anisotropy_strength >= 0.0f && mat.anisotropy_strength <= 1.0f))
+      fail("KHR_materials_anisotropy.anisotropyStrength must be in [0, 1]");
   }
   if (const tinygltf::Value* e = extension(src, "KHR_materials_sheen")) {
     mat.sheen_color_factor = color(*e, "sheenColorFactor", glm::vec3(0.0f));
@@ -78,7 +93,8 @@ void read_material_extensions(const tinygltf::Material& src, const TextureResolv
                       std::isfinite(mat.specular_factor) && all_finite(mat.specular_color_factor) &&
                       all_finite(mat.attenuation_color) && std::isfinite(mat.clearcoat_factor) &&
                       std::isfinite(mat.clearcoat_roughness_factor) && all_finite(mat.sheen_color_factor) &&
-                      std::isfinite(mat.sheen_roughness_factor);
+                      std::isfinite(mat.sheen_roughness_factor) && std::isfinite(mat.clearcoat_normal_scale) &&
+                      std::isfinite(mat.anisotropy_rotation);
   if (!finite) fail("has a non-finite extension factor");
 }
 

@@ -54,6 +54,13 @@ std::vector<Config> configs() {
     mixed.specular = 0.5f;
     mixed.specular_color = vec3(1.0f, 0.5f, 0.25f);
     out.push_back({"mixed r" + std::to_string(r), mixed});
+    ShadingPoint brushed = material(1.0f, r);  // KHR_materials_anisotropy, direction in the local frame
+    brushed.anisotropy = 0.8f;
+    brushed.anisotropy_direction = glm::normalize(vec3(1.0f, 2.0f, 0.0f));
+    out.push_back({"anisotropic metal r" + std::to_string(r), brushed});
+    ShadingPoint tilted = coated;  // clearcoatNormalTexture: the coat's own normal
+    tilted.clearcoat_normal = glm::normalize(vec3(0.3f, -0.2f, 1.0f));
+    out.push_back({"tilted clearcoat r" + std::to_string(r), tilted});
     ShadingPoint velvet = material(0.0f, r, vec3(0.2f, 0.1f, 0.1f));
     velvet.sheen_color = vec3(0.9f, 0.4f, 0.6f);
     velvet.sheen_roughness = r;
@@ -62,8 +69,8 @@ std::vector<Config> configs() {
   return out;
 }
 
-// Every configuration at three incident angles. 30 x 3 tests, each at significance
-// 0.001 / 90 (Sidak-style correction), so a correct sampler fails with probability 0.1%.
+// Every configuration at three incident angles. 36 x 3 tests, each at significance
+// 0.001 / 108 (Sidak-style correction), so a correct sampler fails with probability 0.1%.
 TEST(GltfBsdf, SamplingMatchesItsPdfChiSquare) {
   const std::vector<Config> all = configs();
   const double alpha = 1e-3 / (3.0 * all.size());
@@ -112,11 +119,60 @@ TEST(GltfBsdf, SampleAgreesWithEvalAndPdf) {
   }
 }
 
+// KHR_materials_anisotropy: the lobe turns with its direction (rotating wo, wi and the
+// direction together about the normal changes nothing), strength 0 is the isotropic lobe,
+// and the highlight is wider along the direction (alpha_t = mix(alpha, 1, strength^2)) than
+// across it (alpha_b = alpha).
+TEST(GltfBsdf, AnisotropyFollowsItsDirection) {
+  auto rotate = [](const vec3& v, float angle) {
+    const float c = std::cos(angle), s = std::sin(angle);
+    return vec3(c * v.x - s * v.y, s * v.x + c * v.y, v.z);
+  };
+  ShadingPoint brushed = material(1.0f, 0.3f);
+  brushed.anisotropy = 0.9f;
+  brushed.anisotropy_direction = vec3(1.0f, 0.0f, 0.0f);
+  for (int i = 0; i < 100; ++i) {
+    Sampler rng(SamplerKind::independent, i, 4, 0, 1);
+    const vec3 wo = direction(80.0f * rng.next(), 360.0f * rng.next()), wi = direction(80.0f * rng.next(), 360.0f * rng.next());
+    const float angle = 6.0f * rng.next();
+    ShadingPoint turned = brushed;
+    turned.anisotropy_direction = rotate(brushed.anisotropy_direction, angle);
+    const vec3 a = GltfBsdf(brushed, wo, 1.5f).eval(wo, wi);
+    const vec3 b = GltfBsdf(turned, rotate(wo, angle), 1.5f).eval(rotate(wo, angle), rotate(wi, angle));
+    for (int k = 0; k < 3; ++k) ASSERT_NEAR(a[k], b[k], 1e-4f * std::fmax(1.0f, a[k]));
+    ShadingPoint none = brushed;
+    none.anisotropy = 0.0f;
+    const vec3 iso = GltfBsdf(material(1.0f, 0.3f), wo, 1.5f).eval(wo, wi), zero = GltfBsdf(none, wo, 1.5f).eval(wo, wi);
+    for (int k = 0; k < 3; ++k) ASSERT_EQ(iso[k], zero[k]);
+  }
+  // Seen from the normal, light 20 degrees off along the direction against 20 degrees across.
+  const vec3 wo(0.0f, 0.0f, 1.0f);
+  const GltfBsdf bsdf(brushed, wo, 1.5f);
+  const float along = bsdf.eval(wo, direction(20.0f, 0.0f)).x, across = bsdf.eval(wo, direction(20.0f, 90.0f)).x;
+  EXPECT_GT(along, 5.0f * across);
+}
+
+// The clear coat's own normal (clearcoatNormalTexture): its mirror highlight follows that
+// normal, not the base's.
+TEST(GltfBsdf, ClearcoatHighlightFollowsItsNormal) {
+  ShadingPoint coated = material(0.0f, 1.0f, vec3(0.2f));
+  coated.clearcoat = 1.0f;
+  coated.clearcoat_roughness = 0.05f;
+  coated.clearcoat_normal = glm::normalize(vec3(0.2f, 0.0f, 1.0f));
+  const vec3 wo = direction(30.0f, 0.0f);
+  const GltfBsdf bsdf(coated, wo, 1.5f);
+  const vec3 n = coated.clearcoat_normal;
+  const vec3 mirror_coat = 2.0f * glm::dot(wo, n) * n - wo, mirror_base(-wo.x, -wo.y, wo.z);
+  EXPECT_GT(bsdf.eval(wo, mirror_coat).x, 20.0f * bsdf.eval(wo, mirror_base).x);
+}
+
 // Quadrature over the hemisphere of m: the NDF projected on the normal and the
 // distribution of visible normals both integrate to one.
 TEST(Microfacet, DistributionsIntegrateToOne) {
-  for (float alpha : {0.05f, 0.2f, 0.6f, 1.0f}) {
-    const GgxDistribution d{alpha};
+  const GgxDistribution anisotropic[] = {{0.6f, 0.1f, glm::normalize(vec2(1.0f, 1.0f))},
+                                         {0.3f, 0.9f, glm::normalize(vec2(-0.2f, 1.0f))}};
+  for (float alpha : {0.05f, 0.2f, 0.6f, 1.0f, -1.0f, -2.0f}) {
+    const GgxDistribution d = alpha > 0.0f ? GgxDistribution(alpha) : anisotropic[alpha < -1.5f];
     const vec3 wo = direction(60.0f);
     double ndf = 0.0, vndf = 0.0;
     const int n = 2000;
@@ -132,7 +188,7 @@ TEST(Microfacet, DistributionsIntegrateToOne) {
         ndf += d.D(m) * m.z * dw;
         vndf += d.visible_pdf(wo, m) * dw;
       }
-    EXPECT_NEAR(ndf, 1.0, 2e-3) << "alpha " << alpha;
+    EXPECT_NEAR(ndf, 1.0, 2e-3) << "alpha " << alpha << " (negative: anisotropic)";
     EXPECT_NEAR(vndf, 1.0, 2e-3) << "alpha " << alpha;
   }
 }

@@ -42,10 +42,32 @@ TEST(GltfMaterialExtensions, ClearcoatWithTextures) {
   EXPECT_FLOAT_EQ(s.materials[0].clearcoat_factor, 0.0f);  // no extension: none
 }
 
+TEST(GltfMaterialExtensions, ClearcoatNormalTexture) {
+  const SceneDescription s = load("ClearCoatTest");
+  EXPECT_EQ(s.materials[13].name, "CoatNorm_Coated");
+  EXPECT_TRUE(s.materials[13].clearcoat_normal_texture.present());
+  EXPECT_FLOAT_EQ(s.materials[13].clearcoat_normal_scale, 1.0f);
+  EXPECT_TRUE(s.materials[16].clearcoat_normal_texture.present());  // "SharedNorm_Coated"
+  EXPECT_FALSE(s.materials[1].clearcoat_normal_texture.present());
+}
+
+TEST(GltfMaterialExtensions, Anisotropy) {
+  const SceneDescription strength = load("AnisotropyStrengthTest");
+  EXPECT_FLOAT_EQ(strength.materials[0].anisotropy_strength, 0.0f);
+  EXPECT_FLOAT_EQ(strength.materials[1].anisotropy_strength, 1.0f / 6.0f);
+  const SceneDescription s = load("AnisotropyRotationTest");
+  EXPECT_EQ(s.materials[1].name, "Aniso Tan + Rotation");
+  EXPECT_FLOAT_EQ(s.materials[1].anisotropy_strength, 0.5f);
+  EXPECT_FLOAT_EQ(s.materials[1].anisotropy_rotation, 0.523598775598f);  // 30 degrees
+  EXPECT_FALSE(s.materials[1].anisotropy_texture.present());
+  EXPECT_TRUE(s.materials[3].anisotropy_texture.present());
+  EXPECT_FLOAT_EQ(s.materials[3].anisotropy_rotation, 0.349065850398866f);  // 20 degrees
+}
+
 TEST(GltfMaterialExtensions, RenderedExtensionsAreSupported) {
   for (const char* name : {"KHR_materials_transmission", "KHR_materials_ior", "KHR_materials_volume",
                            "KHR_materials_specular", "KHR_materials_clearcoat", "KHR_materials_sheen",
-                           "KHR_materials_unlit"})
+                           "KHR_materials_unlit", "KHR_materials_anisotropy"})
     EXPECT_TRUE(is_supported_gltf_extension(name)) << name;
   EXPECT_FALSE(is_supported_gltf_extension("KHR_materials_iridescence"));
 }
@@ -54,7 +76,8 @@ TEST(GltfMaterialExtensions, RenderedExtensionsAreSupported) {
 // renders all of them.
 TEST(GltfMaterialExtensions, SampleModelsUseOnlySupportedExtensions) {
   for (const char* name : {"AttenuationTest", "ClearCoatTest", "EmissiveStrengthTest", "TransmissionRoughnessTest",
-                           "DamagedHelmet", "MetalRoughSpheresNoTextures"}) {
+                           "DamagedHelmet", "MetalRoughSpheresNoTextures", "AnisotropyStrengthTest",
+                           "AnisotropyRotationTest"}) {
     const GltfLoadResult r = load_gltf(test::scene_path(std::string("khronos/") + name + "/glTF-Binary/" + name + ".glb"));
     for (const std::string& w : r.warnings) EXPECT_EQ(w.find("not supported"), std::string::npos) << name << ": " << w;
     for (const std::string& ext : r.scene.extensions_used) EXPECT_TRUE(is_supported_gltf_extension(ext)) << name << ": " << ext;

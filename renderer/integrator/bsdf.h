@@ -58,8 +58,11 @@ class GltfBsdf {
  public:
   enum Lobe { kDiffuse, kSpecular, kMultiScatter, kTransmission, kSheen, kClearcoat, kLobeCount };
 
-  // `eta` = index of refraction beyond the surface / index on the side of wo.
-  GltfBsdf(const ShadingPoint& sp, const vec3& wo, float eta);
+  // `eta` = index of refraction beyond the surface / index on the side of wo. `frame` is the
+  // shading frame (world to local) for the material's world directions: the anisotropy
+  // direction and the clear coat's own normal.
+  GltfBsdf(const ShadingPoint& sp, const vec3& wo, float eta,
+           const Frame& frame = Frame{{1.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, {0.0f, 0.0f, 1.0f}});
 
   vec3 eval(const vec3& wo, const vec3& wi) const;
   float pdf(const vec3& wo, const vec3& wi) const;
@@ -79,6 +82,9 @@ class GltfBsdf {
   float base_reflectance(float mu) const;  // e(mu): the compensated interface's reflectance
   void compensate(const vec3& wo);
   vec3 multiscatter(const vec3& wo, const vec3& wi) const;  // the metal's extra lobe
+  void orient_lobes(const ShadingPoint& sp, const Frame& frame, const vec3& wo);
+  vec3 coat(const vec3& wo, const vec3& wi) const;  // the clear coat's reflection
+  float coat_pdf(const vec3& wo, const vec3& wi) const;
   float lobe_pdf(int lobe, const vec3& wo, const vec3& wi) const;
   vec3 reflection(const vec3& wo, const vec3& wi) const;  // diffuse + specular, below the coat
   vec3 transmission(const vec3& wo, const vec3& wi) const;
@@ -96,6 +102,8 @@ class GltfBsdf {
   float e_o_ = 1.0f;  // E(mu_o) of the base lobe
   vec3 multiscatter_color_{0.0f};  // Kulla-Conty's Fresnel term / (pi (1 - avg E)); 0 = no lobe
   float coat_interface_scale_ = 1.0f;  // 1 / E_coat(mu_o)
+  bool coat_tilted_ = false;  // the coat has its own normal (clearcoatNormalTexture)
+  Frame coat_frame_{{1.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, {0.0f, 0.0f, 1.0f}};  // local to the coat's
   vec3 straight_{0.0f};  // the thin-walled straight pass; 0 for a volume or no transmission
   GgxDistribution ggx_, coat_ggx_;
   vec3 sheen_color_;

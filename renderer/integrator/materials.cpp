@@ -15,7 +15,8 @@ MaterialTable::MaterialTable(const SceneDescription& scene) : materials_(scene.m
       need(*srgb, srgb_, ColorEncoding::SRGB);
     for (const TextureRef* linear :
          {&m.metallic_roughness_texture, &m.normal_texture, &m.transmission_texture, &m.thickness_texture,
-          &m.specular_texture, &m.clearcoat_texture, &m.clearcoat_roughness_texture, &m.sheen_roughness_texture})
+          &m.specular_texture, &m.clearcoat_texture, &m.clearcoat_roughness_texture, &m.sheen_roughness_texture,
+          &m.clearcoat_normal_texture, &m.anisotropy_texture})
       need(*linear, linear_, ColorEncoding::Linear);
   }
 }
@@ -43,19 +44,51 @@ vec4 MaterialTable::lookup(const TextureRef& ref, const std::vector<TextureImage
 // The tangent-space normal map applied to the interpolated frame (glTF: RGB in [0,1] maps
 // to [-1,1], scaled in x and y by normalTexture.scale; +Y up in UV space, so the bitangent
 // is cross(normal, tangent) * tangent.w).
-vec3 MaterialTable::perturbed_normal(const Material& m, const SurfaceHit& hit) const {
+namespace {
+
+// The hit's tangent frame (tangent, bitangent) orthogonal to its shading normal; false when
+// the mesh gives none (no TANGENT and no UVs).
+bool tangent_frame(const SurfaceHit& hit, vec3& tangent, vec3& bitangent) {
   const vec3 t_raw = vec3(hit.tangent);
   const vec3 t = t_raw - hit.ns * glm::dot(hit.ns, t_raw);
   const float len = glm::length(t);
-  if (!(len > 1e-8f)) return vec3(0.0f);
-  const vec3 tangent = t / len;
-  const vec3 bitangent = glm::cross(hit.ns, tangent) * (hit.tangent.w < 0.0f ? -1.0f : 1.0f);
-  vec3 n = vec3(lookup(m.normal_texture, linear_, hit)) * 2.0f - 1.0f;
-  n.x *= m.normal_scale;
-  n.y *= m.normal_scale;
+  if (!(len > 1e-8f)) return false;
+  tangent = t / len;
+  bitangent = glm::cross(hit.ns, tangent) * (hit.tangent.w < 0.0f ? -1.0f : 1.0f);
+  return true;
+}
+
+}  // namespace
+
+vec3 MaterialTable::perturbed_normal(const TextureRef& map, float scale, const SurfaceHit& hit) const {
+  vec3 tangent, bitangent;
+  if (!tangent_frame(hit, tangent, bitangent)) return vec3(0.0f);
+  vec3 n = vec3(lookup(map, linear_, hit)) * 2.0f - 1.0f;
+  n.x *= scale;
+  n.y *= scale;
   const vec3 world = n.x * tangent + n.y * bitangent + n.z * hit.ns;
   const float wl = glm::length(world);
   return wl > 0.0f && std::isfinite(wl) ? world / wl : vec3(0.0f);
+}
+
+// KHR_materials_anisotropy: the direction (texture RG, else the tangent) rotated by
+// anisotropyRotation counter-clockwise in tangent space, and the strength x texture B.
+vec3 MaterialTable::anisotropy_direction(const Material& m, const SurfaceHit& hit, float& strength) const {
+  vec3 tangent, bitangent;
+  strength = 0.0f;
+  if (!(m.anisotropy_strength > 0.0f) || !tangent_frame(hit, tangent, bitangent)) return vec3(0.0f);
+  vec2 d(1.0f, 0.0f);
+  strength = m.anisotropy_strength;
+  if (m.anisotropy_texture.present()) {
+    const vec4 texel = lookup(m.anisotropy_texture, linear_, hit);
+    d = vec2(texel) * 2.0f - 1.0f;
+    strength *= texel.b;
+  }
+  const float c = std::cos(m.anisotropy_rotation), s = std::sin(m.anisotropy_rotation);
+  const vec3 world = (c * d.x - s * d.y) * tangent + (s * d.x + c * d.y) * bitangent;
+  const float len = glm::length(world);
+  if (!(len > 1e-8f)) strength = 0.0f;
+  return strength > 0.0f ? world / len : vec3(0.0f);
 }
 
 ShadingPoint MaterialTable::evaluate(const SurfaceHit& hit) const {
@@ -71,7 +104,8 @@ ShadingPoint MaterialTable::evaluate(const SurfaceHit& hit) const {
   const vec4 mr = lookup(m.metallic_roughness_texture, linear_, hit);
   sp.metallic = glm::clamp(m.metallic_factor * mr.b, 0.0f, 1.0f);
   sp.roughness = glm::clamp(m.roughness_factor * mr.g, 0.0f, 1.0f);
-  if (m.normal_texture.present() && hit.tangent != vec4(0.0f)) sp.normal = perturbed_normal(m, hit);
+  if (m.normal_texture.present() && hit.tangent != vec4(0.0f))
+    sp.normal = perturbed_normal(m.normal_texture, m.normal_scale, hit);
   sp.transmission = glm::clamp(m.transmission_factor * lookup(m.transmission_texture, linear_, hit).r, 0.0f, 1.0f);
   sp.ior = m.ior;
   const float thickness = m.thickness_factor * lookup(m.thickness_texture, linear_, hit).g;
@@ -83,6 +117,9 @@ ShadingPoint MaterialTable::evaluate(const SurfaceHit& hit) const {
   sp.clearcoat = glm::clamp(m.clearcoat_factor * lookup(m.clearcoat_texture, linear_, hit).r, 0.0f, 1.0f);
   sp.clearcoat_roughness =
       glm::clamp(m.clearcoat_roughness_factor * lookup(m.clearcoat_roughness_texture, linear_, hit).g, 0.0f, 1.0f);
+  if (sp.clearcoat > 0.0f && m.clearcoat_normal_texture.present() && hit.tangent != vec4(0.0f))
+    sp.clearcoat_normal = perturbed_normal(m.clearcoat_normal_texture, m.clearcoat_normal_scale, hit);
+  sp.anisotropy_direction = anisotropy_direction(m, hit, sp.anisotropy);
   sp.sheen_color = glm::clamp(m.sheen_color_factor * vec3(lookup(m.sheen_color_texture, srgb_, hit)), 0.0f, 1.0f);
   sp.sheen_roughness = glm::clamp(m.sheen_roughness_factor * lookup(m.sheen_roughness_texture, linear_, hit).a, 0.0f, 1.0f);
   return sp;

@@ -24,6 +24,9 @@ struct ShadingPoint {
   float specular = 1.0f;
   vec3 specular_color{1.0f};
   float clearcoat = 0.0f, clearcoat_roughness = 0.0f;
+  vec3 clearcoat_normal{0.0f};  // the coat's normal map applied (world); zero = the base's normal
+  float anisotropy = 0.0f;  // KHR_materials_anisotropy strength
+  vec3 anisotropy_direction{0.0f};  // world, in the tangent plane; zero = isotropic
   vec3 sheen_color{0.0f};
   float sheen_roughness = 0.0f;
   bool unlit = false;
@@ -42,7 +45,8 @@ class MaterialTable {
 
  private:
   vec4 lookup(const TextureRef& ref, const std::vector<TextureImage>& images, const SurfaceHit& hit) const;
-  vec3 perturbed_normal(const Material& m, const SurfaceHit& hit) const;
+  vec3 perturbed_normal(const TextureRef& map, float scale, const SurfaceHit& hit) const;
+  vec3 anisotropy_direction(const Material& m, const SurfaceHit& hit, float& strength) const;
 
   std::vector<Material> materials_;
   Material default_material_;  // the glTF default: white, metallic 1, roughness 1

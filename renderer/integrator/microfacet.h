@@ -13,21 +13,32 @@ constexpr float kMinAlpha = 1e-3f;
 
 inline float sqr(float x) { return x * x; }
 
+// Anisotropic when alpha_x != alpha_y: alpha_x along `axis` (a unit direction in the
+// tangent plane of the local frame, KHR_materials_anisotropy's direction), alpha_y across.
 struct GgxDistribution {
-  float alpha;  // glTF: roughness squared
+  float alpha_x, alpha_y;
+  vec2 axis{1.0f, 0.0f};
 
-  float D(const vec3& m) const {
-    if (m.z <= 0.0f) return 0.0f;
-    const float a2 = alpha * alpha;
-    const float t = m.z * m.z * (a2 - 1.0f) + 1.0f;
-    return a2 / (kPi * t * t);
+  GgxDistribution(float alpha) : alpha_x(alpha), alpha_y(alpha) {}  // isotropic
+  GgxDistribution(float ax, float ay, vec2 direction) : alpha_x(ax), alpha_y(ay), axis(direction) {}
+
+  // w in the frame whose x is the axis.
+  vec3 to_axis(const vec3& w) const { return {axis.x * w.x + axis.y * w.y, axis.x * w.y - axis.y * w.x, w.z}; }
+  vec3 from_axis(const vec3& w) const { return {axis.x * w.x - axis.y * w.y, axis.y * w.x + axis.x * w.y, w.z}; }
+
+  float D(const vec3& m_local) const {
+    if (m_local.z <= 0.0f) return 0.0f;
+    const vec3 m = to_axis(m_local);
+    const float t = sqr(m.x / alpha_x) + sqr(m.y / alpha_y) + m.z * m.z;
+    return 1.0f / (kPi * alpha_x * alpha_y * t * t);
   }
   // Smith's auxiliary function: G1 = 1 / (1 + lambda).
-  float lambda(const vec3& w) const {
-    const float cos2 = w.z * w.z;
+  float lambda(const vec3& w_local) const {
+    const float cos2 = w_local.z * w_local.z;
     if (cos2 <= 0.0f) return 0.0f;
-    const float tan2 = std::fmax(0.0f, 1.0f - cos2) / cos2;
-    return 0.5f * (std::sqrt(1.0f + alpha * alpha * tan2) - 1.0f);
+    const vec3 w = to_axis(w_local);
+    const float a2_tan2 = (sqr(alpha_x * w.x) + sqr(alpha_y * w.y)) / cos2;
+    return 0.5f * (std::sqrt(1.0f + a2_tan2) - 1.0f);
   }
   float G1(const vec3& w) const { return 1.0f / (1.0f + lambda(w)); }
   // Height-correlated masking-shadowing (Heitz 2014), as the glTF specification uses.
@@ -40,9 +51,10 @@ struct GgxDistribution {
   }
 
   // A visible normal for w (w.z > 0), Heitz 2018, "Sampling the GGX Distribution of
-  // Visible Normals".
-  vec3 sample_visible(const vec3& w, const vec2& u) const {
-    const vec3 vh = glm::normalize(vec3(alpha * w.x, alpha * w.y, w.z));
+  // Visible Normals": stretch to the unit-roughness configuration, sample, unstretch.
+  vec3 sample_visible(const vec3& w_local, const vec2& u) const {
+    const vec3 w = to_axis(w_local);
+    const vec3 vh = glm::normalize(vec3(alpha_x * w.x, alpha_y * w.y, w.z));
     const float len2 = vh.x * vh.x + vh.y * vh.y;
     const vec3 t1 = len2 > 0.0f ? vec3(-vh.y, vh.x, 0.0f) / std::sqrt(len2) : vec3(1.0f, 0.0f, 0.0f);
     const vec3 t2 = glm::cross(vh, t1);
@@ -51,7 +63,7 @@ struct GgxDistribution {
     const float s = 0.5f * (1.0f + vh.z);
     const float p2 = (1.0f - s) * std::sqrt(std::fmax(0.0f, 1.0f - p1 * p1)) + s * r * std::sin(phi);
     const vec3 nh = p1 * t1 + p2 * t2 + std::sqrt(std::fmax(0.0f, 1.0f - p1 * p1 - p2 * p2)) * vh;
-    return glm::normalize(vec3(alpha * nh.x, alpha * nh.y, std::fmax(1e-6f, nh.z)));
+    return from_axis(glm::normalize(vec3(alpha_x * nh.x, alpha_y * nh.y, std::fmax(1e-6f, nh.z))));
   }
 };
 

@@ -48,8 +48,8 @@ vec3 thin_transmittance(const void* user, const Ray& ray, const HitRecord& hit) 
   const ShadingPoint sp = scene.materials.evaluate(s);
   if (!sp.thin_walled || sp.transmission <= 0.0f || sp.unlit) return vec3(0.0f);
   const bool front = orient(s, sp, ray.direction);
-  const vec3 wo = Frame::from_normal(s.ns).to_local(-ray.direction);
-  return GltfBsdf(sp, wo, front ? sp.ior : 1.0f / sp.ior).straight_transmittance();
+  const Frame frame = Frame::from_normal(s.ns);
+  return GltfBsdf(sp, frame.to_local(-ray.direction), front ? sp.ior : 1.0f / sp.ior, frame).straight_transmittance();
 }
 
 // What reaches the shading point from `distance` along wi (infinity: the environment).
@@ -174,7 +174,7 @@ vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ra
 
     const Frame frame = Frame::from_normal(s.ns);
     const vec3 wo_local = frame.to_local(-ray.direction);
-    const GltfBsdf bsdf(sp, wo_local, front ? sp.ior : 1.0f / sp.ior);
+    const GltfBsdf bsdf(sp, wo_local, front ? sp.ior : 1.0f / sp.ior, frame);
     const ShadingContext ctx{s, frame, bsdf, wo_local};
     if (last) {  // no scattering left, but the straight pass is none: it goes on, weighted
       throughput *= bsdf.straight_transmittance();

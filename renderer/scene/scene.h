@@ -93,6 +93,13 @@ struct Material {
   TextureRef clearcoat_texture;  // R channel
   float clearcoat_roughness_factor = 0.0f;
   TextureRef clearcoat_roughness_texture;  // G channel
+  TextureRef clearcoat_normal_texture;  // the coat's own normal map (tangent space, linear)
+  float clearcoat_normal_scale = 1.0f;
+  // KHR_materials_anisotropy: the specular lobe stretched along a direction in the tangent
+  // plane, rotated counter-clockwise from the tangent by `anisotropy_rotation` radians
+  float anisotropy_strength = 0.0f;
+  float anisotropy_rotation = 0.0f;
+  TextureRef anisotropy_texture;  // RG = direction in tangent space ([0,1] to [-1,1]), B = strength
   // KHR_materials_sheen
   glm::vec3 sheen_color_factor{0.0f};
   TextureRef sheen_color_texture;  // sRGB encoded
