@@ -24,6 +24,7 @@ struct RenderOptions {
   std::string pixel_filter = "blackman-harris";
   float filter_width = 0.0f;  // 0: the filter's default
   std::string camera, scene;
+  std::string variant;  // KHR_materials_variants: by name or index; empty: the default materials
   float aperture = 0.0f, focus_distance = 0.0f, fov = 0.0f;
   std::string background = "auto";
   std::string envmap;

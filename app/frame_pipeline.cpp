@@ -83,7 +83,7 @@ std::string frame_output_path(const RenderOptions& o) {
 
 LoadedScene load_scene(const RenderOptions& o) {
   const auto start = std::chrono::steady_clock::now();
-  LoadedScene loaded{load_gltf(o.scene_path, {o.scene})};
+  LoadedScene loaded{load_gltf(o.scene_path, {o.scene, o.variant})};
   for (const std::string& w : loaded.gltf.warnings) fmt::print(stderr, "tessera: warning: {}: {}\n", o.scene_path, w);
   for (const Mesh& m : loaded.gltf.scene.meshes)
     for (const TriangleMesh& p : m.primitives) loaded.triangles += p.triangle_count();
@@ -91,8 +91,13 @@ LoadedScene load_scene(const RenderOptions& o) {
   return loaded;
 }
 
-FramePlan plan_frame(const RenderOptions& o, const SceneDescription& scene) {
+FramePlan plan_frame(const RenderOptions& o, const GltfLoadResult& loaded) {
+  const SceneDescription& scene = loaded.scene;
   FramePlan plan;
+  if (loaded.material_variant >= 0) {
+    plan.material_variant = loaded.material_variant;
+    plan.material_variant_name = loaded.material_variants[loaded.material_variant];
+  }
   plan.output = frame_output_path(o);
   plan.preview = o.preview;
   plan_image(o, scene, plan);
@@ -147,6 +152,7 @@ ImageWriteParams frame_write_params(const RenderOptions& o, const FramePlan& pla
   meta.world_to_ndc = camera.world_to_ndc();
   meta.scene_path = o.scene_path;
   meta.camera_name = plan.camera.name;
+  meta.material_variant = plan.material_variant_name;
   meta.partial = partial;
   meta.target_spp = settings.spp;
   if (settings.adaptive.on()) {

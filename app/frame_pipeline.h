@@ -37,8 +37,11 @@ struct FramePlan {
   std::string output, preview;  // checked writable
   bool cost_layer = false;  // --aov cost: CPU time per tile, from the profile
   bool denoise = false;  // --denoise: the settings carry the half buffers and features it needs
+  // --variant: the KHR_materials_variants variant the loader applied (index -1, name empty: none).
+  int material_variant = -1;
+  std::string material_variant_name;
 };
-FramePlan plan_frame(const RenderOptions& o, const SceneDescription& scene);
+FramePlan plan_frame(const RenderOptions& o, const GltfLoadResult& loaded);
 
 // Stage 3: the BVH, textures and lights (the description is moved in), and the camera.
 struct BuiltFrame {

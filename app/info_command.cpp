@@ -47,6 +47,11 @@ int run_info(const InfoOptions& o) {
   fmt::print("triangles   {} unique, {} instanced (as placed in the scene)\n", unique, placed);
   fmt::print("meshes      {} ({} primitives), placed {} times\n", s.meshes.size(), primitives, s.instances.size());
   fmt::print("materials   {}\n", s.materials.size());
+  if (!loaded.material_variants.empty()) {  // KHR_materials_variants: render --variant NAME|INDEX
+    fmt::print("variants    {} (render --variant NAME or INDEX)\n", loaded.material_variants.size());
+    for (std::size_t i = 0; i < loaded.material_variants.size(); ++i)
+      fmt::print("  {}: '{}'\n", i, loaded.material_variants[i]);
+  }
   fmt::print("textures    {} images\n", textured);
   fmt::print("cameras     {}\n", s.cameras.size());
   for (std::size_t i = 0; i < s.cameras.size(); ++i) {

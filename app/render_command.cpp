@@ -65,6 +65,9 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
       ->check(CLI::Range(0.5f, 8.0f));
   cmd->add_option("--camera", o.camera, "Camera by index or name [default: the scene's first, else an automatic camera framing the scene]");
   cmd->add_option("--scene", o.scene, "glTF scene by index or name [default: the file's default scene, else 0]");
+  cmd->add_option("--variant", o.variant,
+                  "Material variant (KHR_materials_variants) by name or index: each primitive that maps it "
+                  "gets its mapped material, the others keep theirs [default: the file's default materials]");
   cmd->add_option("--aperture", o.aperture, "Thin-lens aperture diameter in scene units (0: pinhole)")
       ->check(CLI::Range(0.0f, 1e6f))->capture_default_str();
   cmd->add_option("--focus-distance", o.focus_distance,
@@ -185,13 +188,14 @@ int run_render(const RenderOptions& o) {
   check_profile_outputs(profile_outputs);
 
   LoadedScene loaded = load_scene(o);
-  FramePlan plan = plan_frame(o, loaded.gltf.scene);
+  FramePlan plan = plan_frame(o, loaded.gltf);
   const double load_seconds = loaded.seconds;
   const std::uint64_t triangles = loaded.triangles;
   const BuiltFrame built = build_frame(std::move(loaded), plan);
   RenderSettings& settings = plan.settings;
 
-  const std::string resume_text = resume_settings(o, settings, built.camera, plan.environment);
+  const std::string resume_text = resume_settings(o, settings, built.camera, plan.environment,
+                                                  plan.material_variant, plan.material_variant_name);
   FilmState resumed;
   if (!o.resume.empty()) {
     check_resume_settings(o.resume, resumed_settings, resume_text);

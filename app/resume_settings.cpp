@@ -50,7 +50,7 @@ std::string hash_file(const std::string& path) {
 }
 
 std::string resume_settings(const RenderOptions& o, const RenderSettings& s, const RenderCamera& camera,
-                            const EnvironmentParams& env) {
+                            const EnvironmentParams& env, int variant, const std::string& variant_name) {
   std::string aovs;
   if (s.aovs.albedo) aovs += "albedo,";
   if (s.aovs.normal) aovs += "normal,";
@@ -71,6 +71,9 @@ std::string resume_settings(const RenderOptions& o, const RenderSettings& s, con
   if (s.light_sampling != LightSampling::Mis)
     text += fmt::format("light-sampling={}\n", s.light_sampling == LightSampling::BsdfOnly ? "bsdf" : "lights");
   if (s.clamp > 0.0f) text += fmt::format("clamp={}\n", s.clamp);
+  // Only with --variant (frames before it had the default materials): the index decides, the
+  // name is for the message.
+  if (variant >= 0) text += fmt::format("variant={} '{}'\n", variant, variant_name);
   // Only with adaptive sampling, so frames from before it still resume; the check below
   // compares both ways, so neither side can drop these lines unnoticed.
   if (s.adaptive.on())

@@ -15,9 +15,11 @@
 
 namespace tessera {
 
-// "key=value" lines, one per setting, in a fixed order.
+// "key=value" lines, one per setting, in a fixed order. `variant`: the material variant
+// applied (-1: none), named `variant_name`.
 std::string resume_settings(const RenderOptions& options, const RenderSettings& settings, const RenderCamera& camera,
-                            const EnvironmentParams& environment);
+                            const EnvironmentParams& environment, int variant = -1,
+                            const std::string& variant_name = "");
 
 // Throws UsageError naming `path` and the first setting that differs.
 void check_resume_settings(const std::string& path, const std::string& stored, const std::string& current);

@@ -128,6 +128,7 @@ void write_exr(const std::string& path, const FrameImage& img, const ImageWriteP
   header.insert("tesseraVersion", Imf::StringAttribute(tessera_version()));
   if (!m.scene_path.empty()) header.insert("scene", Imf::StringAttribute(m.scene_path));
   if (!m.camera_name.empty()) header.insert("camera", Imf::StringAttribute(m.camera_name));
+  if (!m.material_variant.empty()) header.insert("materialVariant", Imf::StringAttribute(m.material_variant));
   if (!params.header_from.empty()) copy_attributes(params.header_from, header);
 
   const Imf::PixelType type = params.half ? Imf::HALF : Imf::FLOAT;

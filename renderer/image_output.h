@@ -36,6 +36,7 @@ struct FrameMetadata {
   std::uint64_t dropped_samples = 0;
   glm::mat4 world_to_camera{1.0f}, world_to_ndc{1.0f};
   std::string scene_path, camera_name;
+  std::string material_variant;  // the scene's material variant rendered (empty: none, not written)
   bool partial = false;  // stopped early: samplesPerPixel tells how far it got
   int target_spp = 0;  // --spp: what a finished render reaches (0: not written)
   float noise_threshold = 0.0f;  // adaptive sampling (0: off, not written)

@@ -20,16 +20,17 @@
 #include "scene_io/gltf_material.h"
 #include "scene_io/gltf_mesh.h"
 #include "scene_io/gltf_parse.h"
+#include "scene_io/gltf_variants.h"
 #include "scene_io/load_error.h"
 
 namespace tessera {
 
 const std::vector<std::string>& supported_gltf_extensions() {
   static const std::vector<std::string> names = {
-      "KHR_lights_punctual",       "KHR_materials_anisotropy", "KHR_materials_clearcoat",  "KHR_materials_emissive_strength",
-      "KHR_materials_ior",         "KHR_materials_sheen",      "KHR_materials_specular",
-      "KHR_materials_transmission",
-      "KHR_materials_unlit",       "KHR_materials_volume",     "KHR_mesh_quantization",
+      "KHR_lights_punctual",        "KHR_materials_anisotropy",   "KHR_materials_clearcoat",
+      "KHR_materials_emissive_strength", "KHR_materials_ior",  "KHR_materials_sheen",
+      "KHR_materials_specular",     "KHR_materials_transmission", "KHR_materials_unlit",
+      "KHR_materials_variants",     "KHR_materials_volume",       "KHR_mesh_quantization",
       "KHR_texture_transform"};
   return names;
 }
@@ -57,12 +58,15 @@ bool finite_matrix(const glm::mat4& m) {
 class Converter {
  public:
   Converter(const tinygltf::Model& model, const std::string& file, GltfLoadResult& result)
-      : model_(model), file_(file), out_(result.scene), warnings_(result.warnings),
+      : model_(model), file_(file), result_(result), out_(result.scene), warnings_(result.warnings),
         reader_{model, file} {}
 
   void run(const GltfLoadParams& params) {
     check_extensions();
     out_.materials = convert_materials(model_, file_, warnings_);
+    result_.material_variants = read_material_variants(model_, file_);
+    if (!params.variant.empty())
+      result_.material_variant = choose_material_variant(result_.material_variants, params.variant, file_);
     out_.images = convert_images(model_, file_);
     const std::vector<int> parent = check_node_hierarchy(model_, file_);
     traverse(scene_roots(model_, choose_scene(params.scene), parent, file_));
@@ -200,6 +204,8 @@ class Converter {
       const std::string what = fmt::format("mesh {} primitive {}", index, p);
       auto prim = convert_primitive(reader_, src.primitives[p], what, warnings_);
       if (!prim) continue;
+      prim->material = material_for_variant(src.primitives[p], result_.material_variant,
+                                            result_.material_variants.size(), out_.materials.size(), file_, what);
       if (prim->material >= static_cast<int>(out_.materials.size()))
         fail(fmt::format("{} refers to material {}, but the file has {}", what, prim->material,
                          count_of(out_.materials.size(), "material")));
@@ -276,6 +282,7 @@ class Converter {
 
   const tinygltf::Model& model_;
   const std::string& file_;
+  GltfLoadResult& result_;
   SceneDescription& out_;
   std::vector<std::string>& warnings_;
   AccessorReader reader_;

@@ -12,11 +12,17 @@ namespace tessera {
 
 struct GltfLoadParams {
   std::string scene;  // index or name; empty = the file's default scene, else scene 0
+  // KHR_materials_variants: the variant by name (else index) whose mapped materials the
+  // primitives get; empty = every primitive's default material. (The {} keeps GltfLoadParams{scene}
+  // free of -Wmissing-field-initializers.)
+  std::string variant{};
 };
 
 struct GltfLoadResult {
   SceneDescription scene;
   std::vector<std::string> warnings;  // each once, already prefixed with nothing
+  std::vector<std::string> material_variants;  // KHR_materials_variants: the names, by index
+  int material_variant = -1;  // the variant applied (GltfLoadParams::variant); -1: none
 };
 
 GltfLoadResult load_gltf(const std::string& path, const GltfLoadParams& params = {});

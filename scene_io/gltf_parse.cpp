@@ -8,6 +8,7 @@
 
 #include "scene_io/gltf_container.h"
 #include "scene_io/gltf_diagnose.h"
+#include "scene_io/gltf_variants.h"
 #include "scene_io/load_error.h"
 
 namespace tessera {
@@ -87,6 +88,11 @@ tinygltf::Model parse_gltf(const std::vector<std::uint8_t>& bytes, const std::st
   tinygltf::TinyGLTF parser;
   parser.SetFsCallbacks({&file_exists, &expand_file_path, &read_whole_file, &write_whole_file, &ctx});
   parser.SetImageLoader(&load_image, &ctx);
+  // tinygltf's own reading of extension objects drops empty arrays and objects and cuts
+  // integers to int, so KHR_materials_variants (scene_io/gltf_variants.cpp) reads the JSON
+  // text of each `extensions` object instead, which tinygltf keeps only when asked to.
+  if (container.json.find(kMaterialsVariants) != std::string_view::npos)
+    parser.SetStoreOriginalJSONForExtrasAndExtensions(true);
   tinygltf::Model model;
   std::string err, warn;
   const auto size = static_cast<unsigned>(bytes.size());
