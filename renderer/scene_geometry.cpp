@@ -98,7 +98,7 @@ unsigned SceneGeometry::attach_triangles(RTCScene target, const TriangleMesh& me
   }
   std::memcpy(vertices, mesh.positions.data(), mesh.positions.size() * sizeof(vec3));
   std::memcpy(indices, mesh.indices.data(), mesh.triangle_count() * 3 * sizeof(std::uint32_t));
-  install_alpha_test(geom, mesh);
+  install_filters(geom, mesh);
   rtcCommitGeometry(geom);
   const unsigned id = rtcAttachGeometry(target, geom);
   rtcReleaseGeometry(geom);
@@ -107,28 +107,86 @@ unsigned SceneGeometry::attach_triangles(RTCScene target, const TriangleMesh& me
 
 namespace {
 
-// Embree filter: rejects a hit where the surface is transparent (MASK below the cutoff, or
-// BLEND with probability 1 - alpha). Runs for intersection and occlusion rays alike.
+// A shadow ray's query: Embree hands the context's address to the occlusion filters.
+struct ShadowQuery {
+  RTCIntersectContext embree;  // first, so that the filters can cast back
+  ThinTransmittance thin = nullptr;
+  const void* user = nullptr;
+  vec3 transmittance{1.0f};
+  // Surfaces already counted: with spatial splits (build quality high) Embree may report the
+  // same triangle more than once.
+  std::uint32_t seen[SceneGeometry::kMaxThinCrossings][3];
+  int seen_count = 0;
+  bool first_time(std::uint32_t inst, std::uint32_t geom, std::uint32_t prim) {
+    for (int k = 0; k < seen_count; ++k)
+      if (seen[k][0] == inst && seen[k][1] == geom && seen[k][2] == prim) return false;
+    seen[seen_count][0] = inst;
+    seen[seen_count][1] = geom;
+    seen[seen_count][2] = prim;
+    ++seen_count;
+    return true;
+  }
+};
+
+// Embree filter for rays that look for the closest hit: rejects a hit where the surface is
+// transparent (MASK below the cutoff, or BLEND with probability 1 - alpha).
 void alpha_filter(const RTCFilterFunctionNArguments* args) {
-  const auto* test = static_cast<const SceneGeometry::AlphaTestView*>(args->geometryUserPtr);
+  const auto* view = static_cast<const SceneGeometry::FilterView*>(args->geometryUserPtr);
   for (unsigned i = 0; i < args->N; ++i) {
     if (args->valid[i] == 0) continue;
     const std::uint32_t prim = RTCHitN_primID(args->hit, args->N, i);
     const float u = RTCHitN_u(args->hit, args->N, i), v = RTCHitN_v(args->hit, args->N, i);
-    if (!test->opaque_at(prim, u, v, args->ray, args->N, i)) args->valid[i] = 0;
+    if (!view->opaque_at(prim, u, v, args->ray, args->N, i)) args->valid[i] = 0;
+  }
+}
+
+// Embree filter for shadow rays: multiplies what the surface lets through into the query
+// and rejects the hit (traversal goes on) unless nothing gets through any more.
+void shadow_filter(const RTCFilterFunctionNArguments* args) {
+  const auto* view = static_cast<const SceneGeometry::FilterView*>(args->geometryUserPtr);
+  auto* query = reinterpret_cast<ShadowQuery*>(const_cast<RTCIntersectContext*>(args->context));
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] == 0) continue;
+    HitRecord hit;
+    hit.t = RTCRayN_tfar(args->ray, args->N, i);
+    hit.u = RTCHitN_u(args->hit, args->N, i);
+    hit.v = RTCHitN_v(args->hit, args->N, i);
+    hit.geom = RTCHitN_geomID(args->hit, args->N, i);
+    hit.prim = RTCHitN_primID(args->hit, args->N, i);
+    hit.instance = RTCHitN_instID(args->hit, args->N, i, 0);
+    if (query->seen_count == SceneGeometry::kMaxThinCrossings) continue;  // too many: taken as blocked
+    if (!query->first_time(hit.instance, hit.geom, hit.prim)) {
+      args->valid[i] = 0;
+      continue;
+    }
+    const float alpha = view->alpha_tested ? view->alpha_at(hit.prim, hit.u, hit.v) : 1.0f;
+    vec3 through(1.0f - alpha);
+    if (alpha > 0.0f && view->transmissive) {
+      const Ray ray{{RTCRayN_org_x(args->ray, args->N, i), RTCRayN_org_y(args->ray, args->N, i),
+                     RTCRayN_org_z(args->ray, args->N, i)},
+                    {RTCRayN_dir_x(args->ray, args->N, i), RTCRayN_dir_y(args->ray, args->N, i),
+                     RTCRayN_dir_z(args->ray, args->N, i)}};
+      through += alpha * query->thin(query->user, ray, hit);
+    }
+    query->transmittance *= through;
+    if (max_component(query->transmittance) > 0.0f) args->valid[i] = 0;
   }
 }
 
 }  // namespace
 
-bool SceneGeometry::AlphaTestView::opaque_at(std::uint32_t prim, float u, float v, RTCRayN* ray, unsigned n,
-                                             unsigned i) const {
+float SceneGeometry::FilterView::alpha_at(std::uint32_t prim, float u, float v) const {
   const std::uint32_t* idx = &mesh->indices[3 * prim];
   vec2 uv[2] = {vec2(0.0f), vec2(0.0f)};
   if (!mesh->texcoords0.empty()) uv[0] = interpolate(mesh->texcoords0, idx, u, v);
   if (!mesh->texcoords1.empty()) uv[1] = interpolate(mesh->texcoords1, idx, u, v);
   const vec4 color = mesh->colors.empty() ? vec4(1.0f) : interpolate(mesh->colors, idx, u, v);
-  const float alpha = materials->opacity(mesh->material, uv, color);
+  return materials->opacity(mesh->material, uv, color);
+}
+
+bool SceneGeometry::FilterView::opaque_at(std::uint32_t prim, float u, float v, RTCRayN* ray, unsigned n,
+                                          unsigned i) const {
+  const float alpha = alpha_at(prim, u, v);
   if (alpha >= 1.0f) return true;
   if (alpha <= 0.0f) return false;
   const float key[6] = {RTCRayN_org_x(ray, n, i), RTCRayN_org_y(ray, n, i), RTCRayN_org_z(ray, n, i),
@@ -136,13 +194,15 @@ bool SceneGeometry::AlphaTestView::opaque_at(std::uint32_t prim, float u, float 
   return ray_hash(key, 6, prim) < alpha;
 }
 
-void SceneGeometry::install_alpha_test(RTCGeometry geom, const TriangleMesh& mesh) {
+void SceneGeometry::install_filters(RTCGeometry geom, const TriangleMesh& mesh) {
   if (!materials_ || mesh.material < 0) return;
-  if (scene_.materials[mesh.material].alpha_mode == AlphaMode::Opaque) return;
-  alpha_tests_.push_back(std::make_unique<AlphaTestView>(AlphaTestView{&mesh, materials_}));
-  rtcSetGeometryUserData(geom, alpha_tests_.back().get());
-  rtcSetGeometryIntersectFilterFunction(geom, alpha_filter);
-  rtcSetGeometryOccludedFilterFunction(geom, alpha_filter);
+  const Material& m = scene_.materials[mesh.material];
+  const bool alpha_tested = m.alpha_mode != AlphaMode::Opaque, transmissive = m.transmission_factor > 0.0f;
+  if (!alpha_tested && !transmissive) return;
+  filter_views_.push_back(std::make_unique<FilterView>(FilterView{&mesh, materials_, alpha_tested, transmissive}));
+  rtcSetGeometryUserData(geom, filter_views_.back().get());
+  if (alpha_tested) rtcSetGeometryIntersectFilterFunction(geom, alpha_filter);
+  rtcSetGeometryOccludedFilterFunction(geom, shadow_filter);
 }
 
 void SceneGeometry::add_baked(const Mesh& mesh, const glm::mat4& to_world) {
@@ -214,9 +274,12 @@ bool SceneGeometry::intersect(const Ray& ray, HitRecord& hit) const {
   return true;
 }
 
-bool SceneGeometry::occluded(const vec3& origin, const vec3& direction, float tmax) const {
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
+vec3 SceneGeometry::transmittance(const vec3& origin, const vec3& direction, float tmax, ThinTransmittance thin,
+                                  const void* user) const {
+  ShadowQuery query;
+  rtcInitIntersectContext(&query.embree);
+  query.thin = thin;
+  query.user = user;
   RTCRay ray;
   ray.org_x = origin.x;
   ray.org_y = origin.y;
@@ -230,8 +293,8 @@ bool SceneGeometry::occluded(const vec3& origin, const vec3& direction, float tm
   ray.mask = 0xffffffffu;
   ray.id = 0;
   ray.flags = 0;
-  rtcOccluded1(top_, &context, &ray);
-  return ray.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
+  rtcOccluded1(top_, &query.embree, &ray);
+  return ray.tfar < 0.0f ? vec3(0.0f) : query.transmittance;  // Embree sets tfar to -inf on a hit
 }
 
 const SceneGeometry::Placement& SceneGeometry::placement(const HitRecord& hit, Placement& scratch) const {

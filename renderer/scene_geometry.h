@@ -34,24 +34,38 @@ struct SurfaceHit {
 
 class MaterialTable;
 
+// What a shadow ray passes at a thin-walled transmissive surface: its straight-through
+// transmittance there, as the integrator models it (zero where the surface is not thin).
+using ThinTransmittance = vec3 (*)(const void* user, const Ray& ray, const HitRecord& hit);
+
 class SceneGeometry {
  public:
-  // What an alpha-test filter needs about its triangles (Embree geometry user data).
-  struct AlphaTestView {
+  // What the filters need about their triangles (Embree geometry user data).
+  struct FilterView {
     const TriangleMesh* mesh;
     const MaterialTable* materials;
+    bool alpha_tested;  // alpha MASK or BLEND
+    bool transmissive;  // transmission > 0: thin-walled where it has no thickness
+    float alpha_at(std::uint32_t prim, float u, float v) const;
     bool opaque_at(std::uint32_t prim, float u, float v, RTCRayN* ray, unsigned n, unsigned i) const;
   };
 
   // With `materials`, triangles whose material is alpha MASK or BLEND get Embree filter
-  // functions, so every ray (camera, bounce, shadow) sees the cut-outs the same way.
+  // functions, so every ray (camera, bounce, shadow) sees the cut-outs the same way; those
+  // of transmissive materials get an occlusion filter, so shadow rays pass thin surfaces.
   SceneGeometry(const SceneDescription& scene, RTCDevice device, const MaterialTable* materials = nullptr);
   ~SceneGeometry();
   SceneGeometry(const SceneGeometry&) = delete;
   SceneGeometry& operator=(const SceneGeometry&) = delete;
 
   bool intersect(const Ray& ray, HitRecord& hit) const;
-  bool occluded(const vec3& origin, const vec3& direction, float tmax) const;
+  // What reaches origin from origin + tmax direction: 0 behind an opaque surface, else the
+  // product of what the surfaces between let through (1 - alpha of a BLEND surface, the
+  // straight-through transmittance of a thin transmissive one, from `thin`). Each surface
+  // counts once; past kMaxThinCrossings of them the ray is taken as blocked.
+  static constexpr int kMaxThinCrossings = 16;
+  vec3 transmittance(const vec3& origin, const vec3& direction, float tmax, ThinTransmittance thin,
+                     const void* user) const;
   SurfaceHit surface(const Ray& ray, const HitRecord& hit) const;
 
   // Every triangle list where it stands, with the ids a hit on it carries.
@@ -82,14 +96,14 @@ class SceneGeometry {
   void add_baked(const Mesh& mesh, const glm::mat4& to_world);
   void add_instanced(int mesh_index, const std::vector<const Instance*>& placements);
   unsigned attach_triangles(RTCScene target, const TriangleMesh& mesh);
-  void install_alpha_test(RTCGeometry geom, const TriangleMesh& mesh);
+  void install_filters(RTCGeometry geom, const TriangleMesh& mesh);
   const Placement& placement(const HitRecord& hit, Placement& scratch) const;
 
 
   const SceneDescription& scene_;
   RTCDevice device_;
   const MaterialTable* materials_;
-  std::vector<std::unique_ptr<AlphaTestView>> alpha_tests_;
+  std::vector<std::unique_ptr<FilterView>> filter_views_;
   RTCScene top_ = nullptr;
   std::vector<RTCScene> prototypes_;  // one per instanced mesh, indexed like scene_.meshes
   std::vector<TriangleMesh> baked_;  // world-space copies of meshes placed once

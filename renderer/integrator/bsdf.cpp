@@ -5,9 +5,6 @@ namespace {
 
 float max3(const vec3& v) { return max_component(v); }
 
-// Thin-walled transmission mirrors the reflected direction through the surface plane.
-vec3 mirror_z(const vec3& w) { return {w.x, w.y, -w.z}; }
-
 }  // namespace
 
 GltfBsdf::GltfBsdf(const ShadingPoint& sp, const vec3& wo, float eta)
@@ -19,6 +16,8 @@ GltfBsdf::GltfBsdf(const ShadingPoint& sp, const vec3& wo, float eta)
       refracts_(!sp.thin_walled && sp.transmission > 0.0f && std::fabs(sp.ior - 1.0f) > 1e-3f),
       specular_(sp.specular),
       clearcoat_(sp.clearcoat),
+      roughness_(glm::clamp(sp.roughness, 0.0f, 1.0f)),
+      coat_roughness_(glm::clamp(sp.clearcoat_roughness, 0.0f, 1.0f)),
       ggx_{std::fmax(kMinAlpha, sp.roughness * sp.roughness)},
       coat_ggx_{std::fmax(kMinAlpha, sp.clearcoat_roughness * sp.clearcoat_roughness)},
       sheen_color_(sp.sheen_color),
@@ -26,27 +25,80 @@ GltfBsdf::GltfBsdf(const ShadingPoint& sp, const vec3& wo, float eta)
       sheen_max_(max_component(sp.sheen_color)) {
   // A volume of index 1 is invisible: its microfacets bend nothing, whatever their roughness
   // (treating it as thin-walled, as refracts_ does, must not blur it either).
-  if (!sp.thin_walled && transmission_ > 0.0f && !refracts_) ggx_.alpha = kMinAlpha;
+  if (!sp.thin_walled && transmission_ > 0.0f && !refracts_) {
+    ggx_.alpha = kMinAlpha;
+    roughness_ = 0.0f;
+  }
   const float r = (sp.ior - 1.0f) / (sp.ior + 1.0f);
   f0_ = glm::min(vec3(r * r) * sp.specular_color, vec3(1.0f));
-  coat_scale_ = 1.0f - clearcoat_ * coat_fresnel(wo.z);
+  f0_max_ = max3(f0_);
+  compensate(wo);
   // Selection probabilities: each lobe's share of the reflected energy, estimated at the
   // macro normal. Every lobe that can be non-zero keeps a non-zero probability.
-  const float fo = max3(dielectric_fresnel(wo.z));
+  const float fo = base_reflectance(wo.z);
   const float dielectric = 1.0f - metallic_;
   const float tint = std::fmax(luminance(base_), 1e-3f);
   float w[kLobeCount];
   w[kDiffuse] = dielectric * (1.0f - transmission_) * (1.0f - fo) * luminance(base_);
-  w[kSpecular] = metallic_ * max3(fresnel_schlick(base_, vec3(1.0f), wo.z)) + dielectric * fo;
+  w[kSpecular] = metallic_ * max3(fresnel_schlick(base_, vec3(1.0f), wo.z)) * e_o_ + dielectric * fo;
+  w[kMultiScatter] = metallic_ * (1.0f - e_o_) * max3(multiscatter_color_) * kPi * (1.0f - ggx_albedo_average(roughness_));
   w[kTransmission] = dielectric * transmission_ * std::fmax(1.0f - fo, 0.05f) * tint;
   const float under_sheen = sheen_scaling(wo);
+  if (!refracts_ && transmission_ > 0.0f)
+    straight_ = coat_scale_ * under_sheen * dielectric * transmission_ * (1.0f - fo) * base_;
   for (int i = 0; i < kSheen; ++i) w[i] *= under_sheen;
   w[kSheen] = sheen_max_ > 0.0f ? sheen_max_ * sheen_albedo(wo.z, sheen_.alpha) : 0.0f;
   for (int i = 0; i < kClearcoat; ++i) w[i] *= coat_scale_;
-  w[kClearcoat] = clearcoat_ * coat_fresnel(wo.z);
+  w[kClearcoat] = 1.0f - coat_scale_;  // the coat's compensated reflectance
   float total = 0.0f;
   for (float x : w) total += x;
   for (int i = 0; i < kLobeCount; ++i) weight_[i] = total > 0.0f ? w[i] / total : 0.0f;
+}
+
+// The albedo tables' factors for this material and wo (see the header).
+void GltfBsdf::compensate(const vec3& wo) {
+  const float mu = wo.z;
+  e_o_ = ggx_albedo(mu, roughness_);
+  if (refracts_) {
+    const InterfaceAlbedo a = dielectric_albedo(mu, roughness_, eta_);
+    interface_scale_ = 1.0f / std::fmax(a.reflect + a.transmit, 1e-3f);
+  } else {
+    interface_scale_ = 1.0f / std::fmax(e_o_, 1e-3f);
+  }
+  const float e_avg = refracts_ ? dielectric_reflectance_average(roughness_, eta_)
+                                : specular_ * (f0_max_ + (1.0f - f0_max_) * ggx_schlick_share_average(roughness_));
+  base_scale_o_ = e_avg < 1.0f - 1e-4f ? (1.0f - base_reflectance(mu)) / (1.0f - e_avg) : 0.0f;
+  // Kulla and Conty: the Fresnel average of Schlick's f0..1 is f0 + (1 - f0) / 21, and the
+  // light that leaves after k > 1 bounces sums to F_avg^2 E_avg / (1 - F_avg (1 - E_avg)) of
+  // the lost share. Below 1e-4 lost on average there is nothing to restore.
+  const float e_avg_metal = ggx_albedo_average(roughness_);
+  if (metallic_ > 0.0f && e_avg_metal < 1.0f - 1e-4f) {
+    const vec3 f_avg = base_ + (vec3(1.0f) - base_) / 21.0f;
+    const vec3 f_ms = f_avg * f_avg * e_avg_metal / (vec3(1.0f) - f_avg * (1.0f - e_avg_metal));
+    multiscatter_color_ = f_ms / (kPi * (1.0f - e_avg_metal));
+  }
+  if (clearcoat_ > 0.0f) {
+    const float e_coat = ggx_albedo(mu, coat_roughness_);
+    coat_interface_scale_ = 1.0f / std::fmax(e_coat, 1e-3f);
+    const float reflectance = 0.04f + 0.96f * ggx_schlick_albedo(mu, coat_roughness_) * coat_interface_scale_;
+    coat_scale_ = 1.0f - clearcoat_ * reflectance;
+  } else {
+    coat_scale_ = 1.0f;
+  }
+}
+
+float GltfBsdf::base_reflectance(float mu) const {
+  if (refracts_) {
+    const InterfaceAlbedo a = dielectric_albedo(mu, roughness_, eta_);
+    return a.reflect / std::fmax(a.reflect + a.transmit, 1e-3f);
+  }
+  const float e = std::fmax(ggx_albedo(mu, roughness_), 1e-3f);
+  return specular_ * (f0_max_ + (1.0f - f0_max_) * ggx_schlick_albedo(mu, roughness_) / e);
+}
+
+vec3 GltfBsdf::multiscatter(const vec3& wo, const vec3& wi) const {
+  if (multiscatter_color_ == vec3(0.0f) || wi.z <= 0.0f) return vec3(0.0f);
+  return multiscatter_color_ * ((1.0f - e_o_) * (1.0f - ggx_albedo(wi.z, roughness_)));
 }
 
 float GltfBsdf::sheen_scaling(const vec3& w) const {
@@ -67,33 +119,26 @@ vec3 GltfBsdf::reflection(const vec3& wo, const vec3& wi) const {
   const vec3 h = glm::normalize(wo + wi);
   const float cos_oh = glm::dot(wo, h);
   const float spec = ggx_.D(h) * ggx_.G2(wo, wi) / (4.0f * wo.z * wi.z);
-  const vec3 fd = dielectric_fresnel(cos_oh);
-  const vec3 dielectric = (1.0f - max3(fd)) * (1.0f - transmission_) * base_ * kInvPi + fd * spec;
-  const vec3 metal = fresnel_schlick(base_, vec3(1.0f), cos_oh) * spec;
+  const float base_share = base_scale_o_ * (1.0f - base_reflectance(wi.z));
+  const vec3 dielectric =
+      (1.0f - transmission_) * base_share * base_ * kInvPi + dielectric_fresnel(cos_oh) * (spec * interface_scale_);
+  const vec3 metal = fresnel_schlick(base_, vec3(1.0f), cos_oh) * spec + multiscatter(wo, wi);
   return glm::mix(dielectric, metal, metallic_);
 }
 
 vec3 GltfBsdf::transmission(const vec3& wo, const vec3& wi) const {
-  if (transmission_ <= 0.0f || metallic_ >= 1.0f) return vec3(0.0f);
-  float ft;
-  if (!refracts_) {
-    const vec3 wr = mirror_z(wi);
-    const vec3 h = glm::normalize(wo + wr);
-    const float fd = max3(dielectric_fresnel(glm::dot(wo, h)));
-    ft = (1.0f - fd) * ggx_.D(h) * ggx_.G2(wo, wr) / (4.0f * wo.z * wr.z);
-  } else {
-    vec3 h = wi * eta_ + wo;
-    if (glm::dot(h, h) <= 0.0f) return vec3(0.0f);
-    h = glm::normalize(h);
-    if (h.z < 0.0f) h = -h;
-    const float cos_oh = glm::dot(wo, h), cos_ih = glm::dot(wi, h);
-    if (cos_oh <= 0.0f || cos_ih >= 0.0f) return vec3(0.0f);  // back-facing microfacet
-    const float f = fresnel_dielectric(cos_oh, eta_);
-    const float denom = sqr(cos_ih + cos_oh / eta_) * std::fabs(wi.z) * wo.z;
-    // Radiance is compressed by eta^2 entering a denser medium (non-symmetric scattering).
-    ft = ggx_.D(h) * (1.0f - f) * ggx_.G2(wo, wi) * std::fabs(cos_ih * cos_oh / denom) / sqr(eta_);
-  }
-  return (1.0f - metallic_) * transmission_ * base_ * ft;
+  if (!refracts_ || metallic_ >= 1.0f) return vec3(0.0f);  // thin: a straight pass, not evaluable
+  vec3 h = wi * eta_ + wo;
+  if (glm::dot(h, h) <= 0.0f) return vec3(0.0f);
+  h = glm::normalize(h);
+  if (h.z < 0.0f) h = -h;
+  const float cos_oh = glm::dot(wo, h), cos_ih = glm::dot(wi, h);
+  if (cos_oh <= 0.0f || cos_ih >= 0.0f) return vec3(0.0f);  // back-facing microfacet
+  const float f = fresnel_dielectric(cos_oh, eta_);
+  const float denom = sqr(cos_ih + cos_oh / eta_) * std::fabs(wi.z) * wo.z;
+  // Radiance is compressed by eta^2 entering a denser medium (non-symmetric scattering).
+  const float ft = ggx_.D(h) * (1.0f - f) * ggx_.G2(wo, wi) * std::fabs(cos_ih * cos_oh / denom) / sqr(eta_);
+  return (1.0f - metallic_) * transmission_ * interface_scale_ * base_ * ft;
 }
 
 vec3 GltfBsdf::eval(const vec3& wo, const vec3& wi) const {
@@ -103,7 +148,8 @@ vec3 GltfBsdf::eval(const vec3& wo, const vec3& wi) const {
   vec3 f = coat_scale_ * (under_sheen * reflection(wo, wi) + sheen_color_ * sheen_.eval(wo, wi));
   if (clearcoat_ > 0.0f) {
     const vec3 h = glm::normalize(wo + wi);
-    f += clearcoat_ * coat_fresnel(wo.z) * coat_ggx_.D(h) * coat_ggx_.G2(wo, wi) / (4.0f * wo.z * wi.z);
+    f += clearcoat_ * coat_fresnel(glm::dot(wo, h)) * coat_interface_scale_ * coat_ggx_.D(h) * coat_ggx_.G2(wo, wi) /
+         (4.0f * wo.z * wi.z);
   }
   return f;
 }
@@ -112,6 +158,7 @@ float GltfBsdf::lobe_pdf(int lobe, const vec3& wo, const vec3& wi) const {
   switch (lobe) {
     case kDiffuse:
     case kSheen: return wi.z > 0.0f ? wi.z * kInvPi : 0.0f;
+    case kMultiScatter: return wi.z > 0.0f ? multiscatter_pdf_mu(roughness_, wi.z) * (0.5f * kInvPi) : 0.0f;
     case kSpecular:
     case kClearcoat: {
       if (wi.z <= 0.0f) return 0.0f;
@@ -120,11 +167,7 @@ float GltfBsdf::lobe_pdf(int lobe, const vec3& wo, const vec3& wi) const {
       return d.visible_pdf(wo, h) / (4.0f * glm::dot(wo, h));
     }
     default: {  // transmission
-      if (wi.z >= 0.0f) return 0.0f;
-      if (!refracts_) {
-        const vec3 h = glm::normalize(wo + mirror_z(wi));
-        return ggx_.visible_pdf(wo, h) / (4.0f * glm::dot(wo, h));
-      }
+      if (wi.z >= 0.0f || !refracts_) return 0.0f;  // the thin pass is a delta
       vec3 h = wi * eta_ + wo;
       if (glm::dot(h, h) <= 0.0f) return 0.0f;
       h = glm::normalize(h);
@@ -153,15 +196,22 @@ bool GltfBsdf::sample(const vec3& wo, float u_lobe, const vec2& u, BsdfSample& s
     case kDiffuse:
     case kSheen: s.wi = sample_cosine_hemisphere(u); break;
     case kSpecular: s.wi = reflect(wo, ggx_.sample_visible(wo, u)); break;
+    case kMultiScatter: {
+      const float mu = multiscatter_sample_mu(roughness_, u.x), r = std::sqrt(std::fmax(0.0f, 1.0f - mu * mu));
+      const float phi = 2.0f * kPi * u.y;
+      s.wi = {r * std::cos(phi), r * std::sin(phi), mu};
+      break;
+    }
     case kClearcoat: s.wi = reflect(wo, coat_ggx_.sample_visible(wo, u)); break;
     default: {
-      const vec3 h = ggx_.sample_visible(wo, u);
-      if (!refracts_) {
-        s.wi = mirror_z(reflect(wo, h));
-        if (s.wi.z >= 0.0f) return false;
-      } else if (!refract(wo, h, eta_, s.wi)) {
-        return false;  // total internal reflection at this microfacet
+      if (!refracts_) {  // thin-walled: straight through, weight straight_ / probability
+        s.wi = -wo;
+        s.f = straight_ / wo.z;
+        s.pdf = weight_[kTransmission];
+        s.transmitted = s.passthrough = true;
+        return s.pdf > 0.0f;
       }
+      if (!refract(wo, ggx_.sample_visible(wo, u), eta_, s.wi)) return false;  // total internal reflection
     }
   }
   const bool below = lobe == kTransmission;

@@ -3,21 +3,36 @@
 // always in the upper hemisphere (the integrator flips the frame to the side the ray came
 // from, and passes the matching relative index of refraction).
 //
-//   metal      = D G / (4 |cos_o cos_i|) * Schlick(baseColor, 1, wo.h)
-//   dielectric = (1 - s max(F)) * [(1 - T) baseColor / pi + T baseColor btdf] + s F * D G / (4 |cos cos|)
+//   metal      = Schlick(baseColor, 1, wo.h) D G / (4 |cos_o cos_i|) + multiple scattering
+//   interface  = [s F D G / (4 |cos cos|) + T baseColor btdf] / E_interface(mu_o)
+//   dielectric = interface + (1 - T) baseColor / pi * (1 - e(mu_o)) (1 - e(mu_i)) / (1 - avg e)
 //   material   = mix(dielectric, metal, metallic)
 //   sheened    = sheenColor * D_charlie V + material * min(1 - max(sheenColor) E(wo), same for wi)
-//   coated     = (1 - c Fc(n.wo)) * sheened + c Fc(n.wo) * D_c G_c / (4 |cos cos|)
+//   coated     = (1 - c e_coat(mu_o)) * sheened + c Fc D_c G_c / (4 |cos cos| E_coat(mu_o))
 // F is Schlick's with f0 = min(((ior-1)/(ior+1))^2 specularColor, 1) scaled by s = specular;
 // a refracting (volume) dielectric uses the exact Fresnel term instead, so glass conserves
 // energy and shows total internal reflection. btdf is a rough refraction (Walter et al.
-// 2007) when the material has a volume, or a straight pass through the surface when it is
-// thin-walled. Directions are sampled per lobe (cosine, GGX visible normals) and combined as
-// a mixture whose pdf is the weighted sum of the lobes' pdfs. Plain struct, no virtual calls.
+// 2007) when the material has a volume, or, thin-walled, a straight pass through the
+// surface (a delta, as pbrt-v4's thin dielectric: roughness does not blur it), which shadow
+// rays also take.
+//
+// Energy compensation (microfacet_albedo.h): single-scattering GGX loses the light that
+// bounces among the microfacets, up to 60% at roughness 1. The metal gets Kulla and Conty's
+// (2017) multiple-scattering lobe, (1 - E(mu_o)) (1 - E(mu_i)) / (pi (1 - avg E)) times their
+// Fresnel average term: reciprocal, and with Fresnel 1 it restores exactly what is lost. A
+// dielectric interface is divided by its single-scattering albedo E_interface(mu_o) (Turquin
+// 2019): reflection plus transmission then sum to 1 from every direction, the split between
+// them kept; the diffuse base takes what the interface reflects, e(mu) = its compensated
+// reflectance, in Kulla and Conty's reciprocal form, so a white base under any specular
+// layer, and the clear coat over any lossless layer, reflect everything.
+// Directions are sampled per lobe (cosine, GGX visible normals, the multiple-scattering
+// lobe's tabulated shape) and combined as a mixture whose pdf is the weighted sum of the
+// lobes' pdfs. Plain struct, no virtual calls.
 #pragma once
 
 #include "renderer/integrator/materials.h"
 #include "renderer/integrator/microfacet.h"
+#include "renderer/integrator/microfacet_albedo.h"
 #include "renderer/integrator/sheen.h"
 
 namespace tessera {
@@ -27,6 +42,10 @@ struct BsdfSample {
   vec3 f{0.0f};  // BSDF value (whole mixture)
   float pdf = 0.0f;  // solid angle (whole mixture)
   bool transmitted = false;  // wi is below the surface
+  // A thin-walled surface's straight pass (a delta: wi = -wo): the path goes on as if the
+  // surface were not there, with f |cos| / pdf as its weight; light sampling reaches light
+  // through it by the same transmittance (straight_transmittance).
+  bool passthrough = false;
 };
 
 // Cosine-weighted direction on the upper hemisphere (Malley's method).
@@ -37,7 +56,7 @@ inline vec3 sample_cosine_hemisphere(const vec2& u) {
 
 class GltfBsdf {
  public:
-  enum Lobe { kDiffuse, kSpecular, kTransmission, kSheen, kClearcoat, kLobeCount };
+  enum Lobe { kDiffuse, kSpecular, kMultiScatter, kTransmission, kSheen, kClearcoat, kLobeCount };
 
   // `eta` = index of refraction beyond the surface / index on the side of wo.
   GltfBsdf(const ShadingPoint& sp, const vec3& wo, float eta);
@@ -46,12 +65,20 @@ class GltfBsdf {
   float pdf(const vec3& wo, const vec3& wi) const;
   bool sample(const vec3& wo, float u_lobe, const vec2& u, BsdfSample& s) const;
 
-  bool has_transmission() const { return weight_[kTransmission] > 0.0f; }
+  // Whether eval() can be non-zero below the surface: refraction into a volume. (A thin
+  // surface's transmission is a straight pass, a delta that only sampling produces.)
+  bool has_transmission() const { return refracts_ && weight_[kTransmission] > 0.0f; }
+  // What a thin-walled transmissive surface lets straight through towards -wo: the share of
+  // the compensated interface that is not reflected, under the sheen and the coat.
+  vec3 straight_transmittance() const { return straight_; }
   float lobe_probability(Lobe lobe) const { return weight_[lobe]; }
 
  private:
   vec3 dielectric_fresnel(float cos_oh) const;  // s * F for the dielectric layer
   float coat_fresnel(float cos_o) const;
+  float base_reflectance(float mu) const;  // e(mu): the compensated interface's reflectance
+  void compensate(const vec3& wo);
+  vec3 multiscatter(const vec3& wo, const vec3& wi) const;  // the metal's extra lobe
   float lobe_pdf(int lobe, const vec3& wo, const vec3& wi) const;
   vec3 reflection(const vec3& wo, const vec3& wi) const;  // diffuse + specular, below the coat
   vec3 transmission(const vec3& wo, const vec3& wi) const;
@@ -62,6 +89,14 @@ class GltfBsdf {
   vec3 f0_;  // dielectric normal-incidence reflectance (specular colour applied)
   float specular_;
   float clearcoat_;
+  float roughness_, coat_roughness_;  // of the tables' lookups
+  float f0_max_;  // largest channel of f0 (before s): e(mu) of the Schlick interface follows it
+  float interface_scale_ = 1.0f;  // 1 / E_interface(mu_o)
+  float base_scale_o_ = 1.0f;  // (1 - e(mu_o)) / (1 - avg e): the diffuse base's share, wo's half
+  float e_o_ = 1.0f;  // E(mu_o) of the base lobe
+  vec3 multiscatter_color_{0.0f};  // Kulla-Conty's Fresnel term / (pi (1 - avg E)); 0 = no lobe
+  float coat_interface_scale_ = 1.0f;  // 1 / E_coat(mu_o)
+  vec3 straight_{0.0f};  // the thin-walled straight pass; 0 for a volume or no transmission
   GgxDistribution ggx_, coat_ggx_;
   vec3 sheen_color_;
   CharlieSheen sheen_;

@@ -6,6 +6,10 @@
 namespace tessera {
 namespace {
 
+// Straight passes through thin surfaces one path may make: a bound, for rays caught between
+// coincident panes.
+constexpr int kMaxPasses = 64;
+
 // Veach's power heuristic (beta = 2) for combining two sampling strategies.
 inline float power_heuristic(float pdf_a, float pdf_b) {
   const float a = pdf_a * pdf_a, b = pdf_b * pdf_b;
@@ -19,6 +23,38 @@ float strategy_weight(LightSampling mode, bool is_light_sample, float pdf, float
     case LightSampling::LightsOnly: return is_light_sample ? 1.0f : 0.0f;
     default: return power_heuristic(pdf, other_pdf);
   }
+}
+
+// Turns the hit's frame to the side `direction` arrives from, with the shading normal (after
+// the normal map) in that hemisphere. True when the ray meets the front face.
+bool orient(SurfaceHit& s, const ShadingPoint& sp, const vec3& direction) {
+  const bool front = glm::dot(s.ng, direction) < 0.0f;
+  if (!front) {
+    s.ng = -s.ng;
+    s.ns = -s.ns;
+  }
+  if (sp.normal != vec3(0.0f)) s.ns = front ? sp.normal : -sp.normal;
+  // Interpolated or mapped normals can face away from the viewer near silhouettes: there
+  // the flat normal is the only consistent choice.
+  if (glm::dot(s.ns, s.ng) <= 0.0f || glm::dot(s.ns, direction) >= 0.0f) s.ns = s.ng;
+  return front;
+}
+
+// A shadow ray crossing a thin-walled transmissive surface: the BSDF's straight pass there,
+// the same weight a path sampling that pass carries (SceneGeometry::transmittance).
+vec3 thin_transmittance(const void* user, const Ray& ray, const HitRecord& hit) {
+  const RenderScene& scene = *static_cast<const RenderScene*>(user);
+  SurfaceHit s = scene.geometry->surface(ray, hit);
+  const ShadingPoint sp = scene.materials.evaluate(s);
+  if (!sp.thin_walled || sp.transmission <= 0.0f || sp.unlit) return vec3(0.0f);
+  const bool front = orient(s, sp, ray.direction);
+  const vec3 wo = Frame::from_normal(s.ns).to_local(-ray.direction);
+  return GltfBsdf(sp, wo, front ? sp.ior : 1.0f / sp.ior).straight_transmittance();
+}
+
+// What reaches the shading point from `distance` along wi (infinity: the environment).
+vec3 visibility(const RenderScene& scene, const vec3& origin, const vec3& wi, float distance) {
+  return scene.geometry->transmittance(origin, wi, distance, thin_transmittance, &scene);
 }
 
 struct ShadingContext {
@@ -48,8 +84,8 @@ vec3 punctual_light_contribution(const RenderScene& scene, const ShadingContext&
     const vec3 f = c.bsdf.eval(c.wo_local, wi_local);
     if (f == vec3(0.0f)) continue;
     ++counters.rays;
-    if (scene.geometry->occluded(c.origin_towards(ls.wi), ls.wi, ls.distance * (1.0f - 1e-4f))) continue;
-    sum += f * ls.irradiance * std::fabs(wi_local.z);
+    const vec3 through = visibility(scene, c.origin_towards(ls.wi), ls.wi, ls.distance * (1.0f - 1e-4f));
+    sum += through * f * ls.irradiance * std::fabs(wi_local.z);
   }
   return sum;
 }
@@ -64,9 +100,10 @@ vec3 area_light_contribution(const RenderScene& scene, const ShadingContext& c, 
   const vec3 f = c.bsdf.eval(c.wo_local, wi_local);
   if (f == vec3(0.0f) || ls.radiance == vec3(0.0f)) return vec3(0.0f);
   ++counters.rays;
-  if (scene.geometry->occluded(c.origin_towards(ls.wi), ls.wi, ls.distance * (1.0f - 1e-4f))) return vec3(0.0f);
+  const vec3 through = visibility(scene, c.origin_towards(ls.wi), ls.wi, ls.distance * (1.0f - 1e-4f));
+  if (through == vec3(0.0f)) return vec3(0.0f);
   const float weight = strategy_weight(mode, true, ls.pdf, c.bsdf.pdf(c.wo_local, wi_local));
-  return f * ls.radiance * (std::fabs(wi_local.z) * weight / ls.pdf);
+  return through * f * ls.radiance * (std::fabs(wi_local.z) * weight / ls.pdf);
 }
 
 // One direction towards the environment image, weighted against BSDF sampling (MIS).
@@ -80,9 +117,10 @@ vec3 environment_contribution(const RenderScene& scene, const ShadingContext& c,
   const vec3 f = c.bsdf.eval(c.wo_local, wi_local);
   if (f == vec3(0.0f)) return vec3(0.0f);
   ++counters.rays;
-  if (scene.geometry->occluded(c.origin_towards(wi), wi, std::numeric_limits<float>::infinity())) return vec3(0.0f);
+  const vec3 through = visibility(scene, c.origin_towards(wi), wi, std::numeric_limits<float>::infinity());
+  if (through == vec3(0.0f)) return vec3(0.0f);
   const float weight = strategy_weight(mode, true, pdf, c.bsdf.pdf(c.wo_local, wi_local));
-  return f * scene.environment.radiance(wi) * (std::fabs(wi_local.z) * weight / pdf);
+  return through * f * scene.environment.radiance(wi) * (std::fabs(wi_local.z) * weight / pdf);
 }
 
 // Denoising features through mirrors (after Cycles' denoising passes): a vertex whose
@@ -106,12 +144,17 @@ vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ra
   vec3 radiance(0.0f), throughput(1.0f);
   vec3 absorption(0.0f);  // of the volume the ray travels in (Beer-Lambert); 0 = none
   float bsdf_pdf = 0.0f;  // solid-angle pdf of the direction that led here; 0 = camera ray
+  // Straight passes through thin surfaces since the last scattering: they do not count as
+  // bounces, and the light a pass reaches is weighed against light sampling from that
+  // vertex, as far away as the whole straight line.
+  float passed = 0.0f;
+  int passes = 0;
   const LightSampling mode = params.light_sampling;
   const bool light_sampling = !scene.area_lights->empty() && mode != LightSampling::BsdfOnly;
   const bool environment_sampling = scene.environment.has_image() && mode != LightSampling::BsdfOnly;
   bool features_pending = true;  // the features still look through smooth vertices
   vec3 feature_weight(1.0f);  // the smooth bounces' throughput since the first hit
-  for (int bounce = 0;; ++bounce) {
+  for (int bounce = 0;;) {
     HitRecord hit;
     ++counters.rays;
     const bool found = scene.geometry->intersect(ray, hit);
@@ -121,43 +164,46 @@ vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ra
                                ? strategy_weight(mode, false, bsdf_pdf, scene.environment.pdf(ray.direction))
                                : 1.0f;
       radiance += throughput * scene.environment.radiance(ray.direction) * weight;
-      if (features_pending && bounce > 0) first.albedo = feature_weight * scene.environment.radiance(ray.direction);
+      if (features_pending && (bounce > 0 || passes > 0)) first.albedo = feature_weight * scene.environment.radiance(ray.direction);
       break;
     }
     SurfaceHit s = scene.geometry->surface(ray, hit);
     const ShadingPoint sp = scene.materials.evaluate(s);
-    const bool front = glm::dot(s.ng, ray.direction) < 0.0f;
-    if ((front || sp.double_sided) && sp.emission != vec3(0.0f)) {
+    if ((glm::dot(s.ng, ray.direction) < 0.0f || sp.double_sided) && sp.emission != vec3(0.0f)) {
       // Light sampling could have found this point too: weigh the two strategies.
-      const float weight = bsdf_pdf > 0.0f && light_sampling
-                               ? strategy_weight(mode, false, bsdf_pdf, scene.area_lights->pdf(hit, s, ray.direction))
-                               : 1.0f;
+      SurfaceHit from_vertex = s;
+      from_vertex.t += passed;
+      const float weight =
+          bsdf_pdf > 0.0f && light_sampling
+              ? strategy_weight(mode, false, bsdf_pdf, scene.area_lights->pdf(hit, from_vertex, ray.direction))
+              : 1.0f;
       radiance += throughput * sp.emission * weight;
     }
     if (sp.unlit) {  // KHR_materials_unlit: the colour is what the surface shows
       radiance += throughput * sp.base_color;
-      if (bounce == 0) first = {true, sp.base_color, s.ns, hit.t};
+      if (bounce == 0 && passes == 0) first = {true, sp.base_color, s.ns, hit.t};
       else if (features_pending) first.albedo = feature_weight * sp.base_color, first.normal = s.ns;
       break;
     }
-    // Shade the side the ray arrived on; keep the shading normal in that hemisphere.
-    if (!front) {
-      s.ng = -s.ng;
-      s.ns = -s.ns;
-    }
-    if (sp.normal != vec3(0.0f)) s.ns = front ? sp.normal : -sp.normal;
-    // Interpolated or mapped normals can face away from the viewer near silhouettes: there
-    // the flat normal is the only consistent choice.
-    if (glm::dot(s.ns, s.ng) <= 0.0f || glm::dot(s.ns, ray.direction) >= 0.0f) s.ns = s.ng;
-    if (bounce == 0) first = {true, sp.base_color, s.ns, hit.t};
+    const bool front = orient(s, sp, ray.direction);
+    if (bounce == 0 && passes == 0) first = {true, sp.base_color, s.ns, hit.t};
     else if (features_pending) first.albedo = feature_weight * sp.base_color, first.normal = s.ns;
     features_pending = features_pending && features_look_through(sp);
-    if (bounce >= params.max_bounces) break;
+    const bool last = bounce >= params.max_bounces;
+    if (last && !(sp.thin_walled && sp.transmission > 0.0f)) break;
 
     const Frame frame = Frame::from_normal(s.ns);
     const vec3 wo_local = frame.to_local(-ray.direction);
     const GltfBsdf bsdf(sp, wo_local, front ? sp.ior : 1.0f / sp.ior);
     const ShadingContext ctx{s, frame, bsdf, wo_local};
+    if (last) {  // no scattering left, but the straight pass is none: it goes on, weighted
+      throughput *= bsdf.straight_transmittance();
+      if (features_pending) feature_weight *= bsdf.straight_transmittance();
+      if (++passes > kMaxPasses || throughput == vec3(0.0f)) break;
+      passed += hit.t;
+      ray = Ray{ctx.origin_towards(ray.direction), ray.direction};
+      continue;
+    }
     if (!scene.description.lights.empty()) radiance += throughput * punctual_light_contribution(scene, ctx, counters);
     if (light_sampling) radiance += throughput * area_light_contribution(scene, ctx, rng, mode, counters);
     if (environment_sampling) radiance += throughput * environment_contribution(scene, ctx, rng, mode, counters);
@@ -165,13 +211,20 @@ vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ra
     BsdfSample bs;
     const vec3 u = rng.next3();  // the direction (x, y) and the lobe (z), stratified together
     if (!bsdf.sample(wo_local, u.z, {u.x, u.y}, bs)) break;
-    const vec3 wi = frame.to_world(bs.wi);
-    if ((glm::dot(wi, s.ng) > 0.0f) == bs.transmitted) break;  // shading and geometry disagree
     throughput *= bs.f * (std::fabs(bs.wi.z) / bs.pdf);
     if (features_pending) feature_weight *= bs.f * (std::fabs(bs.wi.z) / bs.pdf);
+    if (bs.passthrough) {  // on along the same line, the surface as if absent
+      if (++passes > kMaxPasses) break;
+      passed += hit.t;
+      ray = Ray{ctx.origin_towards(ray.direction), ray.direction};
+      continue;
+    }
+    const vec3 wi = frame.to_world(bs.wi);
+    if ((glm::dot(wi, s.ng) > 0.0f) == bs.transmitted) break;  // shading and geometry disagree
     bsdf_pdf = bs.pdf;
+    passed = 0.0f;
     if (bs.transmitted && !sp.thin_walled) absorption = front ? sp.absorption : vec3(0.0f);
-    if (bounce + 1 >= params.roulette_start) {
+    if (++bounce >= params.roulette_start) {
       const float survive = std::fmin(1.0f, max_component(throughput));
       if (rng.next() >= survive) break;
       throughput /= survive;

@@ -1,0 +1,124 @@
+#include "renderer/integrator/microfacet_albedo.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+#include "renderer/integrator/microfacet_tables.inc"  // generated: the build directory
+
+namespace tessera {
+namespace {
+
+using namespace albedo_tables;
+
+// Position of x in [0, 1] on a grid of n points: the lower index and the weight of the upper.
+struct GridPos {
+  int i;
+  float t;
+};
+GridPos locate(float x, int n) {
+  const float s = std::clamp(x, 0.0f, 1.0f) * static_cast<float>(n - 1);
+  const int i = std::min(static_cast<int>(s), n - 2);
+  return {i, s - static_cast<float>(i)};
+}
+
+float lerp(float a, float b, float t) { return a + t * (b - a); }
+
+// Bilinear in (mu, roughness) within one [roughness][mu] plane.
+float plane(const float* table, float mu, float roughness, int roughness_points = kAlbedoRoughness) {
+  const GridPos m = locate(mu, kAlbedoMu), r = locate(roughness, roughness_points);
+  const float* row0 = table + static_cast<std::ptrdiff_t>(r.i) * kAlbedoMu;
+  const float* row1 = row0 + kAlbedoMu;
+  return lerp(lerp(row0[m.i], row0[m.i + 1], m.t), lerp(row1[m.i], row1[m.i + 1], m.t), r.t);
+}
+
+float row(const float* table, float roughness, int roughness_points = kAlbedoRoughness) {
+  const GridPos r = locate(roughness, roughness_points);
+  return lerp(table[r.i], table[r.i + 1], r.t);
+}
+
+// The side of the interface (0: into the denser medium) and the position on the ior grid.
+struct IorPos {
+  int side;
+  GridPos at;
+};
+IorPos locate_ior(float eta) {
+  const int side = eta >= 1.0f ? 0 : 1;
+  const float ior = side == 0 ? eta : 1.0f / eta;
+  return {side, locate((ior - 1.0f) / (kAlbedoIorMax - 1.0f), kAlbedoIor)};
+}
+
+template <typename Read>
+float across_ior(float eta, Read read) {
+  const IorPos p = locate_ior(eta);
+  const int k = p.side * kAlbedoIor + p.at.i;
+  return lerp(read(k), read(k + 1), p.at.t);
+}
+
+// Per roughness row: the cumulative share of integral (1 - E) mu dmu up to each grid point.
+struct MultiScatterRows {
+  float cdf[kAlbedoRoughness][kAlbedoMu];
+  MultiScatterRows() {
+    for (int j = 0; j < kAlbedoRoughness; ++j) {
+      const float* e = kE + j * kAlbedoMu;
+      double acc = 0.0;
+      cdf[j][0] = 0.0f;
+      std::vector<double> sums(kAlbedoMu, 0.0);
+      for (int i = 0; i + 1 < kAlbedoMu; ++i) {
+        const double m0 = double(i) / (kAlbedoMu - 1), m1 = double(i + 1) / (kAlbedoMu - 1);
+        // Trapezoid of the product: plenty for a sampling density (any positive shape is exact).
+        acc += 0.5 * ((1.0 - e[i]) * m0 + (1.0 - e[i + 1]) * m1) * (m1 - m0) + 1e-12;
+        sums[i + 1] = acc;
+      }
+      for (int i = 0; i < kAlbedoMu; ++i) cdf[j][i] = static_cast<float>(sums[i] / acc);
+      cdf[j][kAlbedoMu - 1] = 1.0f;
+    }
+  }
+};
+
+const MultiScatterRows& multiscatter_rows() {
+  static const MultiScatterRows rows;
+  return rows;
+}
+
+int nearest_row(float roughness) {
+  return static_cast<int>(std::lround(std::clamp(roughness, 0.0f, 1.0f) * (kAlbedoRoughness - 1)));
+}
+
+}  // namespace
+
+float multiscatter_sample_mu(float roughness, float u) {
+  const float* cdf = multiscatter_rows().cdf[nearest_row(roughness)];
+  int i = 0;
+  while (i + 2 < kAlbedoMu && cdf[i + 1] <= u) ++i;
+  const float share = cdf[i + 1] - cdf[i];
+  const float t = share > 0.0f ? std::clamp((u - cdf[i]) / share, 0.0f, 1.0f) : 0.5f;
+  return (static_cast<float>(i) + t) / (kAlbedoMu - 1);
+}
+
+float multiscatter_pdf_mu(float roughness, float mu) {
+  if (mu <= 0.0f || mu > 1.0f) return 0.0f;
+  const float* cdf = multiscatter_rows().cdf[nearest_row(roughness)];
+  const GridPos at = locate(mu, kAlbedoMu);
+  return (cdf[at.i + 1] - cdf[at.i]) * (kAlbedoMu - 1);
+}
+
+float ggx_albedo(float mu, float roughness) { return plane(kE, mu, roughness); }
+float ggx_schlick_albedo(float mu, float roughness) { return plane(kE5, mu, roughness); }
+float ggx_albedo_average(float roughness) { return row(kEAverage, roughness); }
+float ggx_schlick_share_average(float roughness) { return row(kShareAverage, roughness); }
+
+InterfaceAlbedo dielectric_albedo(float mu, float roughness, float eta) {
+  const std::ptrdiff_t plane_size = kInterfaceRoughness * kAlbedoMu;
+  return {across_ior(eta, [&](int k) { return plane(kReflect + k * plane_size, mu, roughness, kInterfaceRoughness); }),
+          across_ior(eta, [&](int k) { return plane(kTransmit + k * plane_size, mu, roughness, kInterfaceRoughness); })};
+}
+
+float dielectric_reflectance_average(float roughness, float eta) {
+  return across_ior(eta, [&](int k) {
+    return row(kReflectanceAverage + k * kInterfaceRoughness, roughness, kInterfaceRoughness);
+  });
+}
+
+}  // namespace tessera

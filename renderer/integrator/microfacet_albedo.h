@@ -1,0 +1,43 @@
+// Directional albedos of the single-scattering GGX lobes, tabulated by
+// make_microfacet_tables.cpp at build time, for energy compensation: what a rough
+// microfacet surface loses to its single-scattering model is the light that scatters more
+// than once among the microfacets, and these albedos say how much that is.
+//   E(mu, r):       the lobe with Fresnel 1, the conductor's and the thin interface's loss
+//   E5(mu, r):      the lobe weighted by Schlick's (1 - wo.h)^5, so that with Schlick's
+//                   Fresnel of any f0 the reflectance is f0 E + (1 - f0) E5
+//   dielectric:     reflection and refraction of an exact-Fresnel interface of relative index
+//                   eta (entering a denser medium, eta > 1, or leaving it, eta < 1)
+// mu is the cosine of the outgoing direction, r the glTF roughness (alpha = r^2). Averages
+// are cosine-weighted over the hemisphere: avg(g) = 2 * integral of g(mu) mu dmu.
+#pragma once
+
+namespace tessera {
+
+// The tables' grid: mu and roughness in [0, 1], the index of refraction of the denser side
+// in [1, 3]; each interpolated linearly between grid points. The interface's tables vary
+// fast with the index near the critical angle and slowly with roughness.
+constexpr int kAlbedoMu = 32, kAlbedoRoughness = 32, kInterfaceRoughness = 16, kAlbedoIor = 32;
+constexpr float kAlbedoIorMax = 3.0f;
+
+float ggx_albedo(float mu, float roughness);  // E
+float ggx_schlick_albedo(float mu, float roughness);  // E5
+float ggx_albedo_average(float roughness);  // avg(E)
+float ggx_schlick_share_average(float roughness);  // avg(E5 / E)
+
+struct InterfaceAlbedo {
+  float reflect = 1.0f, transmit = 0.0f;
+};
+InterfaceAlbedo dielectric_albedo(float mu, float roughness, float eta);
+// avg(reflect / (reflect + transmit)): the compensated interface's average reflectance.
+float dielectric_reflectance_average(float roughness, float eta);
+
+// Directions for the conductor's multiple-scattering lobe, whose cosine-weighted shape is
+// (1 - E(mu)) mu: mu from a piecewise-constant density over the mu grid, in proportion to
+// that shape's integral per interval on the grid row nearest `roughness` (so the
+// sample's weight stays within a small factor of its mean, where a cosine distribution
+// would give weights of 1 / (1 - avg(E)) at grazing angles), phi uniform.
+// The density is over mu; a direction's solid-angle density is it over 2 pi.
+float multiscatter_sample_mu(float roughness, float u);
+float multiscatter_pdf_mu(float roughness, float mu);
+
+}  // namespace tessera
