@@ -123,6 +123,20 @@ vec3 environment_contribution(const RenderScene& scene, const ShadingContext& c,
   return through * f * scene.environment.radiance(wi) * (std::fabs(wi_local.z) * weight / pdf);
 }
 
+// Denoising features through mirrors (after Cycles' denoising passes): a vertex whose
+// scattering is mostly (3/4 or more) metal or transmission with GGX alpha at most 0.0025
+// (roughness 0.05) shows what it reflects or refracts, which its own albedo and normal cannot
+// explain; the albedo and normal then come from the next vertex, the albedo weighted by the
+// mirror bounces' throughput, or the albedo is the environment's radiance times that
+// throughput where the continued path leaves the scene (depth stays the first hit's).
+// Cycles continues up to alpha 0.075; here glossier surfaces' features were too noisy to help
+// (DamagedHelmet's visor measured worse with them).
+bool features_look_through(const ShadingPoint& sp) {
+  constexpr float kMirrorAlpha = 0.0025f;
+  const float smooth = sp.roughness * sp.roughness <= kMirrorAlpha ? sp.metallic + (1.0f - sp.metallic) * sp.transmission : 0.0f;
+  return smooth >= 0.75f;
+}
+
 }  // namespace
 
 vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ray,
@@ -138,6 +152,8 @@ vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ra
   const LightSampling mode = params.light_sampling;
   const bool light_sampling = !scene.area_lights->empty() && mode != LightSampling::BsdfOnly;
   const bool environment_sampling = scene.environment.has_image() && mode != LightSampling::BsdfOnly;
+  bool features_pending = true;  // the features still look through smooth vertices
+  vec3 feature_weight(1.0f);  // the smooth bounces' throughput since the first hit
   for (int bounce = 0;;) {
     HitRecord hit;
     ++counters.rays;
@@ -148,6 +164,7 @@ vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ra
                                ? strategy_weight(mode, false, bsdf_pdf, scene.environment.pdf(ray.direction))
                                : 1.0f;
       radiance += throughput * scene.environment.radiance(ray.direction) * weight;
+      if (features_pending && (bounce > 0 || passes > 0)) first.albedo = feature_weight * scene.environment.radiance(ray.direction);
       break;
     }
     SurfaceHit s = scene.geometry->surface(ray, hit);
@@ -165,10 +182,13 @@ vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ra
     if (sp.unlit) {  // KHR_materials_unlit: the colour is what the surface shows
       radiance += throughput * sp.base_color;
       if (bounce == 0 && passes == 0) first = {true, sp.base_color, s.ns, hit.t};
+      else if (features_pending) first.albedo = feature_weight * sp.base_color, first.normal = s.ns;
       break;
     }
     const bool front = orient(s, sp, ray.direction);
     if (bounce == 0 && passes == 0) first = {true, sp.base_color, s.ns, hit.t};
+    else if (features_pending) first.albedo = feature_weight * sp.base_color, first.normal = s.ns;
+    features_pending = features_pending && features_look_through(sp);
     const bool last = bounce >= params.max_bounces;
     if (last && !(sp.thin_walled && sp.transmission > 0.0f)) break;
 
@@ -178,6 +198,7 @@ vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ra
     const ShadingContext ctx{s, frame, bsdf, wo_local};
     if (last) {  // no scattering left, but the straight pass is none: it goes on, weighted
       throughput *= bsdf.straight_transmittance();
+      if (features_pending) feature_weight *= bsdf.straight_transmittance();
       if (++passes > kMaxPasses || throughput == vec3(0.0f)) break;
       passed += hit.t;
       ray = Ray{ctx.origin_towards(ray.direction), ray.direction};
@@ -191,6 +212,7 @@ vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ra
     const vec3 u = rng.next3();  // the direction (x, y) and the lobe (z), stratified together
     if (!bsdf.sample(wo_local, u.z, {u.x, u.y}, bs)) break;
     throughput *= bs.f * (std::fabs(bs.wi.z) / bs.pdf);
+    if (features_pending) feature_weight *= bs.f * (std::fabs(bs.wi.z) / bs.pdf);
     if (bs.passthrough) {  // on along the same line, the surface as if absent
       if (++passes > kMaxPasses) break;
       passed += hit.t;

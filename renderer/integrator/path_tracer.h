@@ -21,7 +21,8 @@ struct PathTracerParams {
   float clamp = 0.0f;  // > 0: clamp each sample's radiance to this luminance (biased; off by default)
 };
 
-// What the camera ray saw first, for the albedo, normal and depth outputs.
+// What the camera ray saw first, for the albedo, normal and depth outputs; through a mirror,
+// the albedo and normal of what it shows (path_tracer.cpp: features_look_through).
 struct FirstHit {
   bool hit = false;
   vec3 albedo{0.0f}, normal{0.0f};
