@@ -80,6 +80,8 @@ void PrintTo(const Sample& s, std::ostream* os) { *os << s.file; }
 
 // unique: README column "triangles" (MultipleScenes: see its own test); cameras: README.
 const Sample kSamples[] = {
+    {"AnisotropyRotationTest/glTF-Binary/AnisotropyRotationTest.glb", 7476, 13876, 6, 11, 0, {-5.556021, -3.53637, -1}, {6.675313, 2.471397, 1}},
+    {"AnisotropyStrengthTest/glTF-Binary/AnisotropyStrengthTest.glb", 97240, 97240, 50, 50, 0, {-4.170141, -0.9872717, -0.4}, {3.4, 6.4, 0.4}},
     {"AttenuationTest/glTF-Binary/AttenuationTest.glb", 232, 292, 18, 23, 0, {-10, -10, -2}, {10, 10, 2}},
     {"Box/glTF-Binary/Box.glb", 12, 12, 1, 1, 0, {-0.5, -0.5, -0.5}, {0.5, 0.5, 0.5}},
     {"BoxTextured/glTF-Binary/BoxTextured.glb", 12, 12, 1, 1, 0, {-0.5, -0.5, -0.5}, {0.5, 0.5, 0.5}},
