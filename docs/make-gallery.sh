@@ -65,6 +65,10 @@ run tessera render scenes/khronos/MetalRoughSpheresNoTextures/glTF-Binary/MetalR
     --envmap $env --width 640 --spp 128 -o docs/images/gallery-metal-rough-spheres.png
 run tessera render scenes/khronos/ClearCoatTest/glTF-Binary/ClearCoatTest.glb --envmap $env \
     --width 800 --height 600 --fov 24 --spp 64 -o docs/images/gallery-clearcoat-test.png
+run tessera render scenes/khronos/AnisotropyRotationTest/glTF-Binary/AnisotropyRotationTest.glb --envmap $env \
+    --width 800 --height 450 --spp 64 -o docs/images/gallery-anisotropy-rotation-test.png
+run tessera render scenes/khronos/AnisotropyStrengthTest/glTF-Binary/AnisotropyStrengthTest.glb --envmap $env \
+    --width 800 --height 600 --spp 64 -o docs/images/gallery-anisotropy-strength-test.png
 # The glass tests under the default white background (no light in the files: 'auto' is a
 # uniform white), and once under the sunrise, whose small sun reaches what is behind the glass
 # only through caustics.
