@@ -75,6 +75,14 @@ void read_material_extensions(const tinygltf::Material& src, const TextureResolv
     mat.clearcoat_normal_texture = texture(*e, "clearcoatNormalTexture", resolve);
     mat.clearcoat_normal_scale = texture_scale(*e, "clearcoatNormalTexture");
   }
+  if (const tinygltf::Value* e = extension(src, "KHR_materials_diffuse_transmission")) {
+    mat.diffuse_transmission_factor = number(*e, "diffuseTransmissionFactor", 0.0f);
+    mat.diffuse_transmission_texture = texture(*e, "diffuseTransmissionTexture", resolve);
+    mat.diffuse_transmission_color_factor = color(*e, "diffuseTransmissionColorFactor", glm::vec3(1.0f));
+    mat.diffuse_transmission_color_texture = texture(*e, "diffuseTransmissionColorTexture", resolve);
+    if (!(mat.diffuse_transmission_factor >= 0.0f && mat.diffuse_transmission_factor <= 1.0f))
+      fail("KHR_materials_diffuse_transmission.diffuseTransmissionFactor must be in [0, 1]");
+  }
   if (const tinygltf::Value* e = extension(src, "KHR_materials_anisotropy")) {
     mat.anisotropy_strength = number(*e, "anisotropyStrength", 0.0f);
     mat.anisotropy_rotation = number(*e, "anisotropyRotation", 0.0f);
@@ -94,7 +102,7 @@ void read_material_extensions(const tinygltf::Material& src, const TextureResolv
                       all_finite(mat.attenuation_color) && std::isfinite(mat.clearcoat_factor) &&
                       std::isfinite(mat.clearcoat_roughness_factor) && all_finite(mat.sheen_color_factor) &&
                       std::isfinite(mat.sheen_roughness_factor) && std::isfinite(mat.clearcoat_normal_scale) &&
-                      std::isfinite(mat.anisotropy_rotation);
+                      std::isfinite(mat.anisotropy_rotation) && all_finite(mat.diffuse_transmission_color_factor);
   if (!finite) fail("has a non-finite extension factor");
 }
 

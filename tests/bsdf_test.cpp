@@ -61,6 +61,10 @@ std::vector<Config> configs() {
     ShadingPoint tilted = coated;  // clearcoatNormalTexture: the coat's own normal
     tilted.clearcoat_normal = glm::normalize(vec3(0.3f, -0.2f, 1.0f));
     out.push_back({"tilted clearcoat r" + std::to_string(r), tilted});
+    ShadingPoint leaf = material(0.0f, r, vec3(0.3f, 0.6f, 0.2f));  // KHR_materials_diffuse_transmission
+    leaf.diffuse_transmission = 0.6f;
+    leaf.diffuse_transmission_color = vec3(0.9f, 0.8f, 0.1f);
+    out.push_back({"diffuse transmission r" + std::to_string(r), leaf});
     ShadingPoint velvet = material(0.0f, r, vec3(0.2f, 0.1f, 0.1f));
     velvet.sheen_color = vec3(0.9f, 0.4f, 0.6f);
     velvet.sheen_roughness = r;
@@ -69,8 +73,8 @@ std::vector<Config> configs() {
   return out;
 }
 
-// Every configuration at three incident angles. 36 x 3 tests, each at significance
-// 0.001 / 108 (Sidak-style correction), so a correct sampler fails with probability 0.1%.
+// Every configuration at three incident angles. 39 x 3 tests, each at significance
+// 0.001 / 117 (Sidak-style correction), so a correct sampler fails with probability 0.1%.
 TEST(GltfBsdf, SamplingMatchesItsPdfChiSquare) {
   const std::vector<Config> all = configs();
   const double alpha = 1e-3 / (3.0 * all.size());
@@ -269,6 +273,8 @@ TEST(GltfBsdf, WhiteFurnaceEveryLosslessMaterialIsOne) {
     ShadingPoint coated = white(0.0f);
     coated.clearcoat = 1.0f;
     coated.clearcoat_roughness = roughness;
+    ShadingPoint translucent = white(0.0f);  // half the diffuse base transmitted, white
+    translucent.diffuse_transmission = 0.5f;
     ShadingPoint coated_metal = white(1.0f);
     coated_metal.clearcoat = 0.5f;
     coated_metal.clearcoat_roughness = 0.3f;
@@ -282,6 +288,7 @@ TEST(GltfBsdf, WhiteFurnaceEveryLosslessMaterialIsOne) {
         {"half glass", half_glass, 1.5f},
         {"thin glass", thin, 1.5f},
         {"clear coat over white", coated, 1.5f},
+        {"diffuse transmission", translucent, 1.5f},
         {"clear coat over metal", coated_metal, 1.5f},
     };
     for (const Case& c : cases)

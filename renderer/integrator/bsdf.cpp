@@ -12,6 +12,8 @@ GltfBsdf::GltfBsdf(const ShadingPoint& sp, const vec3& wo, float eta, const Fram
       metallic_(sp.metallic),
       transmission_(sp.transmission),
       eta_(eta),
+      diffuse_transmission_(sp.diffuse_transmission),
+      diffuse_transmission_color_(sp.diffuse_transmission_color),
       // An index of 1 bends nothing; the half-vector form of refraction degenerates there.
       refracts_(!sp.thin_walled && sp.transmission > 0.0f && std::fabs(sp.ior - 1.0f) > 1e-3f),
       specular_(sp.specular),
@@ -40,7 +42,9 @@ GltfBsdf::GltfBsdf(const ShadingPoint& sp, const vec3& wo, float eta, const Fram
   const float dielectric = 1.0f - metallic_;
   const float tint = std::fmax(luminance(base_), 1e-3f);
   float w[kLobeCount];
-  w[kDiffuse] = dielectric * (1.0f - transmission_) * (1.0f - fo) * luminance(base_);
+  const float diffuse = dielectric * (1.0f - transmission_) * (1.0f - fo);
+  w[kDiffuse] = diffuse * (1.0f - diffuse_transmission_) * luminance(base_);
+  w[kDiffuseTransmission] = diffuse * diffuse_transmission_ * luminance(diffuse_transmission_color_);
   w[kSpecular] = metallic_ * max3(fresnel_schlick(base_, vec3(1.0f), wo.z)) * e_o_ + dielectric * fo;
   w[kMultiScatter] = metallic_ * (1.0f - e_o_) * max3(multiscatter_color_) * kPi * (1.0f - ggx_albedo_average(roughness_));
   w[kTransmission] = dielectric * transmission_ * std::fmax(1.0f - fo, 0.05f) * tint;
@@ -147,8 +151,8 @@ vec3 GltfBsdf::reflection(const vec3& wo, const vec3& wi) const {
   const float cos_oh = glm::dot(wo, h);
   const float spec = ggx_.D(h) * ggx_.G2(wo, wi) / (4.0f * wo.z * wi.z);
   const float base_share = base_scale_o_ * (1.0f - base_reflectance(wi.z));
-  const vec3 dielectric =
-      (1.0f - transmission_) * base_share * base_ * kInvPi + dielectric_fresnel(cos_oh) * (spec * interface_scale_);
+  const vec3 dielectric = (1.0f - transmission_) * (1.0f - diffuse_transmission_) * base_share * base_ * kInvPi +
+                          dielectric_fresnel(cos_oh) * (spec * interface_scale_);
   const vec3 metal = fresnel_schlick(base_, vec3(1.0f), cos_oh) * spec + multiscatter(wo, wi);
   return glm::mix(dielectric, metal, metallic_);
 }
@@ -168,10 +172,19 @@ vec3 GltfBsdf::transmission(const vec3& wo, const vec3& wi) const {
   return (1.0f - metallic_) * transmission_ * interface_scale_ * base_ * ft;
 }
 
+// The Lambertian transmission of the diffuse base, layered under the interface like the
+// diffuse reflection (the cosine toward wi taken on its side).
+vec3 GltfBsdf::diffuse_transmission(const vec3& wo, const vec3& wi) const {
+  if (diffuse_transmission_ <= 0.0f) return vec3(0.0f);
+  const float base_share = base_scale_o_ * (1.0f - base_reflectance(-wi.z));
+  return (1.0f - metallic_) * (1.0f - transmission_) * diffuse_transmission_ * base_share *
+         diffuse_transmission_color_ * kInvPi;
+}
+
 vec3 GltfBsdf::eval(const vec3& wo, const vec3& wi) const {
   if (wo.z <= 0.0f || wi.z == 0.0f) return vec3(0.0f);
   const float under_sheen = std::fmin(sheen_scaling(wo), sheen_scaling(wi));
-  if (wi.z < 0.0f) return coat_scale_ * under_sheen * transmission(wo, wi);
+  if (wi.z < 0.0f) return coat_scale_ * under_sheen * (transmission(wo, wi) + diffuse_transmission(wo, wi));
   vec3 f = coat_scale_ * (under_sheen * reflection(wo, wi) + sheen_color_ * sheen_.eval(wo, wi));
   if (clearcoat_ > 0.0f) f += coat(wo, wi);
   return f;
@@ -200,6 +213,7 @@ float GltfBsdf::lobe_pdf(int lobe, const vec3& wo, const vec3& wi) const {
     case kDiffuse:
     case kSheen: return wi.z > 0.0f ? wi.z * kInvPi : 0.0f;
     case kMultiScatter: return wi.z > 0.0f ? multiscatter_pdf_mu(roughness_, wi.z) * (0.5f * kInvPi) : 0.0f;
+    case kDiffuseTransmission: return wi.z < 0.0f ? -wi.z * kInvPi : 0.0f;
     case kClearcoat: return coat_pdf(wo, wi);
     case kSpecular: {
       if (wi.z <= 0.0f) return 0.0f;
@@ -235,6 +249,7 @@ bool GltfBsdf::sample(const vec3& wo, float u_lobe, const vec2& u, BsdfSample& s
   switch (lobe) {
     case kDiffuse:
     case kSheen: s.wi = sample_cosine_hemisphere(u); break;
+    case kDiffuseTransmission: s.wi = -sample_cosine_hemisphere(u); break;
     case kSpecular: s.wi = reflect(wo, ggx_.sample_visible(wo, u)); break;
     case kMultiScatter: {
       const float mu = multiscatter_sample_mu(roughness_, u.x), r = std::sqrt(std::fmax(0.0f, 1.0f - mu * mu));
@@ -260,7 +275,7 @@ bool GltfBsdf::sample(const vec3& wo, float u_lobe, const vec2& u, BsdfSample& s
       if (!refract(wo, ggx_.sample_visible(wo, u), eta_, s.wi)) return false;  // total internal reflection
     }
   }
-  const bool below = lobe == kTransmission;
+  const bool below = lobe == kTransmission || lobe == kDiffuseTransmission;
   if (below ? s.wi.z >= 0.0f : s.wi.z <= 0.0f) return false;
   s.pdf = pdf(wo, s.wi);
   s.f = eval(wo, s.wi);

@@ -5,7 +5,8 @@
 //
 //   metal      = Schlick(baseColor, 1, wo.h) D G / (4 |cos_o cos_i|) + multiple scattering
 //   interface  = [s F D G / (4 |cos cos|) + T baseColor btdf] / E_interface(mu_o)
-//   dielectric = interface + (1 - T) baseColor / pi * (1 - e(mu_o)) (1 - e(mu_i)) / (1 - avg e)
+//   dielectric = interface + (1 - T) diffuse * (1 - e(mu_o)) (1 - e(mu_i)) / (1 - avg e)
+//   diffuse    = (1 - dt) baseColor / pi above, dt diffuseTransmissionColor / pi below
 //   material   = mix(dielectric, metal, metallic)
 //   sheened    = sheenColor * D_charlie V + material * min(1 - max(sheenColor) E(wo), same for wi)
 //   coated     = (1 - c e_coat(mu_o)) * sheened + c Fc D_c G_c / (4 |cos cos| E_coat(mu_o))
@@ -56,7 +57,7 @@ inline vec3 sample_cosine_hemisphere(const vec2& u) {
 
 class GltfBsdf {
  public:
-  enum Lobe { kDiffuse, kSpecular, kMultiScatter, kTransmission, kSheen, kClearcoat, kLobeCount };
+  enum Lobe { kDiffuse, kDiffuseTransmission, kSpecular, kMultiScatter, kTransmission, kSheen, kClearcoat, kLobeCount };
 
   // `eta` = index of refraction beyond the surface / index on the side of wo. `frame` is the
   // shading frame (world to local) for the material's world directions: the anisotropy
@@ -68,9 +69,12 @@ class GltfBsdf {
   float pdf(const vec3& wo, const vec3& wi) const;
   bool sample(const vec3& wo, float u_lobe, const vec2& u, BsdfSample& s) const;
 
-  // Whether eval() can be non-zero below the surface: refraction into a volume. (A thin
+  // Whether eval() can be non-zero below the surface: refraction into a volume, or diffuse
+  // transmission (KHR_materials_diffuse_transmission). (A thin
   // surface's transmission is a straight pass, a delta that only sampling produces.)
-  bool has_transmission() const { return refracts_ && weight_[kTransmission] > 0.0f; }
+  bool has_transmission() const {
+    return (refracts_ && weight_[kTransmission] > 0.0f) || weight_[kDiffuseTransmission] > 0.0f;
+  }
   // What a thin-walled transmissive surface lets straight through towards -wo: the share of
   // the compensated interface that is not reflected, under the sheen and the coat.
   vec3 straight_transmittance() const { return straight_; }
@@ -88,9 +92,12 @@ class GltfBsdf {
   float lobe_pdf(int lobe, const vec3& wo, const vec3& wi) const;
   vec3 reflection(const vec3& wo, const vec3& wi) const;  // diffuse + specular, below the coat
   vec3 transmission(const vec3& wo, const vec3& wi) const;
+  vec3 diffuse_transmission(const vec3& wo, const vec3& wi) const;
 
   vec3 base_;
   float metallic_, transmission_, eta_;
+  float diffuse_transmission_;  // KHR_materials_diffuse_transmission: share of the diffuse base
+  vec3 diffuse_transmission_color_;
   bool refracts_;  // a volume: refraction and exact Fresnel
   vec3 f0_;  // dielectric normal-incidence reflectance (specular colour applied)
   float specular_;

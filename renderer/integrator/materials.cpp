@@ -11,12 +11,12 @@ MaterialTable::MaterialTable(const SceneDescription& scene) : materials_(scene.m
   };
   for (const Material& m : materials_) {
     for (const TextureRef* srgb : {&m.base_color_texture, &m.emissive_texture, &m.specular_color_texture,
-                                   &m.sheen_color_texture})
+                                   &m.sheen_color_texture, &m.diffuse_transmission_color_texture})
       need(*srgb, srgb_, ColorEncoding::SRGB);
     for (const TextureRef* linear :
          {&m.metallic_roughness_texture, &m.normal_texture, &m.transmission_texture, &m.thickness_texture,
           &m.specular_texture, &m.clearcoat_texture, &m.clearcoat_roughness_texture, &m.sheen_roughness_texture,
-          &m.clearcoat_normal_texture, &m.anisotropy_texture})
+          &m.clearcoat_normal_texture, &m.anisotropy_texture, &m.diffuse_transmission_texture})
       need(*linear, linear_, ColorEncoding::Linear);
   }
 }
@@ -120,6 +120,10 @@ ShadingPoint MaterialTable::evaluate(const SurfaceHit& hit) const {
   if (sp.clearcoat > 0.0f && m.clearcoat_normal_texture.present() && hit.tangent != vec4(0.0f))
     sp.clearcoat_normal = perturbed_normal(m.clearcoat_normal_texture, m.clearcoat_normal_scale, hit);
   sp.anisotropy_direction = anisotropy_direction(m, hit, sp.anisotropy);
+  sp.diffuse_transmission = glm::clamp(
+      m.diffuse_transmission_factor * lookup(m.diffuse_transmission_texture, linear_, hit).a, 0.0f, 1.0f);
+  sp.diffuse_transmission_color = glm::clamp(
+      m.diffuse_transmission_color_factor * vec3(lookup(m.diffuse_transmission_color_texture, srgb_, hit)), 0.0f, 1.0f);
   sp.sheen_color = glm::clamp(m.sheen_color_factor * vec3(lookup(m.sheen_color_texture, srgb_, hit)), 0.0f, 1.0f);
   sp.sheen_roughness = glm::clamp(m.sheen_roughness_factor * lookup(m.sheen_roughness_texture, linear_, hit).a, 0.0f, 1.0f);
   return sp;

@@ -25,6 +25,8 @@ struct ShadingPoint {
   vec3 specular_color{1.0f};
   float clearcoat = 0.0f, clearcoat_roughness = 0.0f;
   vec3 clearcoat_normal{0.0f};  // the coat's normal map applied (world); zero = the base's normal
+  float diffuse_transmission = 0.0f;  // KHR_materials_diffuse_transmission: share of the diffuse base
+  vec3 diffuse_transmission_color{1.0f};
   float anisotropy = 0.0f;  // KHR_materials_anisotropy strength
   vec3 anisotropy_direction{0.0f};  // world, in the tangent plane; zero = isotropic
   vec3 sheen_color{0.0f};

@@ -95,6 +95,11 @@ struct Material {
   TextureRef clearcoat_roughness_texture;  // G channel
   TextureRef clearcoat_normal_texture;  // the coat's own normal map (tangent space, linear)
   float clearcoat_normal_scale = 1.0f;
+  // KHR_materials_diffuse_transmission: a Lambertian transmission in the diffuse base
+  float diffuse_transmission_factor = 0.0f;
+  TextureRef diffuse_transmission_texture;  // A channel
+  glm::vec3 diffuse_transmission_color_factor{1.0f};
+  TextureRef diffuse_transmission_color_texture;  // sRGB encoded
   // KHR_materials_anisotropy: the specular lobe stretched along a direction in the tangent
   // plane, rotated counter-clockwise from the tangent by `anisotropy_rotation` radians
   float anisotropy_strength = 0.0f;
