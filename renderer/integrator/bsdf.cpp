@@ -46,7 +46,7 @@ GltfBsdf::GltfBsdf(const ShadingPoint& sp, const vec3& wo, float eta, const Fram
   w[kDiffuse] = diffuse * (1.0f - diffuse_transmission_) * luminance(base_);
   w[kDiffuseTransmission] = diffuse * diffuse_transmission_ * luminance(diffuse_transmission_color_);
   w[kSpecular] = metallic_ * max3(fresnel_schlick(base_, vec3(1.0f), wo.z)) * e_o_ + dielectric * fo;
-  w[kMultiScatter] = metallic_ * (1.0f - e_o_) * max3(multiscatter_color_) * kPi * (1.0f - ggx_albedo_average(roughness_));
+  w[kMultiScatter] = metallic_ * (1.0f - e_o_) * max3(multiscatter_color_) * kPi * (1.0f - base_albedo_.albedo_average);
   w[kTransmission] = dielectric * transmission_ * std::fmax(1.0f - fo, 0.05f) * tint;
   const float under_sheen = sheen_scaling(wo);
   if (!refracts_ && transmission_ > 0.0f)
@@ -88,7 +88,8 @@ void GltfBsdf::orient_lobes(const ShadingPoint& sp, const Frame& frame, const ve
 // The albedo tables' factors for this material and wo (see the header).
 void GltfBsdf::compensate(const vec3& wo) {
   const float mu = wo.z;
-  e_o_ = ggx_albedo(mu, roughness_);
+  base_albedo_ = AlbedoSlice(roughness_);
+  e_o_ = base_albedo_.albedo(mu);
   if (refracts_) {
     const InterfaceAlbedo a = dielectric_albedo(mu, roughness_, eta_);
     interface_scale_ = 1.0f / std::fmax(a.reflect + a.transmit, 1e-3f);
@@ -96,12 +97,12 @@ void GltfBsdf::compensate(const vec3& wo) {
     interface_scale_ = 1.0f / std::fmax(e_o_, 1e-3f);
   }
   const float e_avg = refracts_ ? dielectric_reflectance_average(roughness_, eta_)
-                                : specular_ * (f0_max_ + (1.0f - f0_max_) * ggx_schlick_share_average(roughness_));
+                                : specular_ * (f0_max_ + (1.0f - f0_max_) * base_albedo_.share_average);
   base_scale_o_ = e_avg < 1.0f - 1e-4f ? (1.0f - base_reflectance(mu)) / (1.0f - e_avg) : 0.0f;
   // Kulla and Conty: the Fresnel average of Schlick's f0..1 is f0 + (1 - f0) / 21, and the
   // light that leaves after k > 1 bounces sums to F_avg^2 E_avg / (1 - F_avg (1 - E_avg)) of
   // the lost share. Below 1e-4 lost on average there is nothing to restore.
-  const float e_avg_metal = ggx_albedo_average(roughness_);
+  const float e_avg_metal = base_albedo_.albedo_average;
   if (metallic_ > 0.0f && e_avg_metal < 1.0f - 1e-4f) {
     const vec3 f_avg = base_ + (vec3(1.0f) - base_) / 21.0f;
     const vec3 f_ms = f_avg * f_avg * e_avg_metal / (vec3(1.0f) - f_avg * (1.0f - e_avg_metal));
@@ -109,9 +110,9 @@ void GltfBsdf::compensate(const vec3& wo) {
   }
   if (clearcoat_ > 0.0f) {
     const float mu_coat = coat_tilted_ ? coat_frame_.to_local(wo).z : mu;
-    const float e_coat = ggx_albedo(mu_coat, coat_roughness_);
-    coat_interface_scale_ = 1.0f / std::fmax(e_coat, 1e-3f);
-    const float reflectance = 0.04f + 0.96f * ggx_schlick_albedo(mu_coat, coat_roughness_) * coat_interface_scale_;
+    coat_albedo_ = AlbedoSlice(coat_roughness_);
+    coat_interface_scale_ = 1.0f / std::fmax(coat_albedo_.albedo(mu_coat), 1e-3f);
+    const float reflectance = 0.04f + 0.96f * coat_albedo_.schlick_share(mu_coat);
     coat_scale_ = 1.0f - clearcoat_ * reflectance;
   } else {
     coat_scale_ = 1.0f;
@@ -123,13 +124,12 @@ float GltfBsdf::base_reflectance(float mu) const {
     const InterfaceAlbedo a = dielectric_albedo(mu, roughness_, eta_);
     return a.reflect / std::fmax(a.reflect + a.transmit, 1e-3f);
   }
-  const float e = std::fmax(ggx_albedo(mu, roughness_), 1e-3f);
-  return specular_ * (f0_max_ + (1.0f - f0_max_) * ggx_schlick_albedo(mu, roughness_) / e);
+  return specular_ * (f0_max_ + (1.0f - f0_max_) * base_albedo_.schlick_share(mu));
 }
 
 vec3 GltfBsdf::multiscatter(const vec3& wo, const vec3& wi) const {
   if (multiscatter_color_ == vec3(0.0f) || wi.z <= 0.0f) return vec3(0.0f);
-  return multiscatter_color_ * ((1.0f - e_o_) * (1.0f - ggx_albedo(wi.z, roughness_)));
+  return multiscatter_color_ * ((1.0f - e_o_) * (1.0f - base_albedo_.albedo(wi.z)));
 }
 
 float GltfBsdf::sheen_scaling(const vec3& w) const {

@@ -103,6 +103,7 @@ class GltfBsdf {
   float specular_;
   float clearcoat_;
   float roughness_, coat_roughness_;  // of the tables' lookups
+  AlbedoSlice base_albedo_, coat_albedo_;  // the tables at those roughnesses (set in compensate)
   float f0_max_;  // largest channel of f0 (before s): e(mu) of the Schlick interface follows it
   float interface_scale_ = 1.0f;  // 1 / E_interface(mu_o)
   float base_scale_o_ = 1.0f;  // (1 - e(mu_o)) / (1 - avg e): the diffuse base's share, wo's half

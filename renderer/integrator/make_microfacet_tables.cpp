@@ -78,10 +78,12 @@ int main() {
       e5[j * kAlbedoMu + i] = static_cast<float>(sum5 / 4096);
     }
   }
+  std::vector<float> share(e.size());  // E5 / E: what the BSDF reads per direction
+  for (std::size_t k = 0; k < e.size(); ++k) share[k] = e[k] > 0.0f ? e5[k] / e[k] : 0.0f;
   std::vector<float> e_avg(kAlbedoRoughness), share_avg(kAlbedoRoughness);
   for (int j = 0; j < kAlbedoRoughness; ++j) {
     e_avg[j] = static_cast<float>(average([&](int i) { return e[j * kAlbedoMu + i]; }));
-    share_avg[j] = static_cast<float>(average([&](int i) { return e5[j * kAlbedoMu + i] / e[j * kAlbedoMu + i]; }));
+    share_avg[j] = static_cast<float>(average([&](int i) { return share[j * kAlbedoMu + i]; }));
   }
   // [side][ior][roughness][mu]: side 0 enters the denser medium (eta = ior), 1 leaves it;
   // one thread per side.
@@ -121,6 +123,7 @@ int main() {
   std::printf("namespace tessera::albedo_tables {\n\n");
   print("kE", e);
   print("kE5", e5);
+  print("kShare", share);
   print("kEAverage", e_avg);
   print("kShareAverage", share_avg);
   print("kReflect", reflect_t);

@@ -104,6 +104,17 @@ float multiscatter_pdf_mu(float roughness, float mu) {
   return (cdf[at.i + 1] - cdf[at.i]) * (kAlbedoMu - 1);
 }
 
+AlbedoSlice::AlbedoSlice(float roughness) {
+  const GridPos r = locate(roughness, kAlbedoRoughness);
+  e0_ = kE + r.i * kAlbedoMu;
+  e1_ = e0_ + kAlbedoMu;
+  s0_ = kShare + r.i * kAlbedoMu;
+  s1_ = s0_ + kAlbedoMu;
+  t_ = r.t;
+  albedo_average = lerp(kEAverage[r.i], kEAverage[r.i + 1], r.t);
+  share_average = lerp(kShareAverage[r.i], kShareAverage[r.i + 1], r.t);
+}
+
 float ggx_albedo(float mu, float roughness) { return plane(kE, mu, roughness); }
 float ggx_schlick_albedo(float mu, float roughness) { return plane(kE5, mu, roughness); }
 float ggx_albedo_average(float roughness) { return row(kEAverage, roughness); }

@@ -24,6 +24,28 @@ float ggx_schlick_albedo(float mu, float roughness);  // E5
 float ggx_albedo_average(float roughness);  // avg(E)
 float ggx_schlick_share_average(float roughness);  // avg(E5 / E)
 
+// The isotropic tables at one roughness: the lookups of one shading point share the
+// roughness interpolation, and read E5 / E from its own table (no division per lookup).
+class AlbedoSlice {
+ public:
+  AlbedoSlice() = default;  // empty: assign a slice before reading it
+  explicit AlbedoSlice(float roughness);
+  float albedo(float mu) const { return at(e0_, e1_, mu); }  // E
+  float schlick_share(float mu) const { return at(s0_, s1_, mu); }  // E5 / E
+  float albedo_average = 1.0f, share_average = 0.0f;  // avg(E), avg(E5 / E)
+
+ private:
+  float at(const float* row0, const float* row1, float mu) const {
+    const float s = (mu < 0.0f ? 0.0f : mu > 1.0f ? 1.0f : mu) * static_cast<float>(kAlbedoMu - 1);
+    const int i = static_cast<int>(s) < kAlbedoMu - 2 ? static_cast<int>(s) : kAlbedoMu - 2;
+    const float f = s - static_cast<float>(i);
+    const float a = row0[i] + f * (row0[i + 1] - row0[i]), b = row1[i] + f * (row1[i + 1] - row1[i]);
+    return a + t_ * (b - a);
+  }
+  const float *e0_ = nullptr, *e1_ = nullptr, *s0_ = nullptr, *s1_ = nullptr;  // the rows about the roughness
+  float t_ = 0.0f;  // the upper row's weight
+};
+
 struct InterfaceAlbedo {
   float reflect = 1.0f, transmit = 0.0f;
 };
