@@ -38,7 +38,7 @@ GltfBsdf::GltfBsdf(const ShadingPoint& sp, const vec3& wo, float eta, const Fram
   compensate(wo);
   // Selection probabilities: each lobe's share of the reflected energy, estimated at the
   // macro normal. Every lobe that can be non-zero keeps a non-zero probability.
-  const float fo = base_reflectance(wo.z);
+  const float fo = reflectance_o_;
   const float dielectric = 1.0f - metallic_;
   const float tint = std::fmax(luminance(base_), 1e-3f);
   float w[kLobeCount];
@@ -93,12 +93,14 @@ void GltfBsdf::compensate(const vec3& wo) {
   if (refracts_) {
     const InterfaceAlbedo a = dielectric_albedo(mu, roughness_, eta_);
     interface_scale_ = 1.0f / std::fmax(a.reflect + a.transmit, 1e-3f);
+    reflectance_o_ = a.reflect * interface_scale_;  // base_reflectance(mu), read once
   } else {
     interface_scale_ = 1.0f / std::fmax(e_o_, 1e-3f);
+    reflectance_o_ = base_reflectance(mu);
   }
   const float e_avg = refracts_ ? dielectric_reflectance_average(roughness_, eta_)
                                 : specular_ * (f0_max_ + (1.0f - f0_max_) * base_albedo_.share_average);
-  base_scale_o_ = e_avg < 1.0f - 1e-4f ? (1.0f - base_reflectance(mu)) / (1.0f - e_avg) : 0.0f;
+  base_scale_o_ = e_avg < 1.0f - 1e-4f ? (1.0f - reflectance_o_) / (1.0f - e_avg) : 0.0f;
   // Kulla and Conty: the Fresnel average of Schlick's f0..1 is f0 + (1 - f0) / 21, and the
   // light that leaves after k > 1 bounces sums to F_avg^2 E_avg / (1 - F_avg (1 - E_avg)) of
   // the lost share. Below 1e-4 lost on average there is nothing to restore.

@@ -108,6 +108,7 @@ class GltfBsdf {
   float interface_scale_ = 1.0f;  // 1 / E_interface(mu_o)
   float base_scale_o_ = 1.0f;  // (1 - e(mu_o)) / (1 - avg e): the diffuse base's share, wo's half
   float e_o_ = 1.0f;  // E(mu_o) of the base lobe
+  float reflectance_o_ = 0.0f;  // e(mu_o): what the compensated interface reflects toward wo
   vec3 multiscatter_color_{0.0f};  // Kulla-Conty's Fresnel term / (pi (1 - avg E)); 0 = no lobe
   float coat_interface_scale_ = 1.0f;  // 1 / E_coat(mu_o)
   bool coat_tilted_ = false;  // the coat has its own normal (clearcoatNormalTexture)
