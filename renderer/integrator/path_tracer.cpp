@@ -154,8 +154,20 @@ vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ra
   const bool environment_sampling = scene.environment.has_image() && mode != LightSampling::BsdfOnly;
   bool features_pending = true;  // the features still look through smooth vertices
   vec3 feature_weight(1.0f);  // the smooth bounces' throughput since the first hit
-  for (int bounce = 0;;) {
-    HitRecord hit;
+  int bounce = 0;
+  HitRecord hit;
+  auto record_features = [&](const ShadingPoint& sp, const SurfaceHit& s) {
+    if (bounce == 0 && passes == 0) first = {true, sp.base_color, s.ns, hit.t};
+    else if (features_pending) first.albedo = feature_weight * sp.base_color, first.normal = s.ns;
+  };
+  // On along the same line past the surface just hit, as if it were absent; false at the bound.
+  auto pass_straight = [&](const vec3& origin) {
+    if (++passes > kMaxPasses) return false;
+    passed += hit.t;
+    ray = Ray{origin, ray.direction};
+    return true;
+  };
+  for (;;) {
     ++counters.rays;
     const bool found = scene.geometry->intersect(ray, hit);
     if (absorption != vec3(0.0f)) throughput *= found ? glm::exp(-absorption * hit.t) : vec3(0.0f);
@@ -181,13 +193,11 @@ vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ra
     }
     if (sp.unlit) {  // KHR_materials_unlit: the colour is what the surface shows
       radiance += throughput * sp.base_color;
-      if (bounce == 0 && passes == 0) first = {true, sp.base_color, s.ns, hit.t};
-      else if (features_pending) first.albedo = feature_weight * sp.base_color, first.normal = s.ns;
+      record_features(sp, s);
       break;
     }
     const bool front = orient(s, sp, ray.direction);
-    if (bounce == 0 && passes == 0) first = {true, sp.base_color, s.ns, hit.t};
-    else if (features_pending) first.albedo = feature_weight * sp.base_color, first.normal = s.ns;
+    record_features(sp, s);
     features_pending = features_pending && features_look_through(sp);
     const bool last = bounce >= params.max_bounces;
     if (last && !(sp.thin_walled && sp.transmission > 0.0f)) break;
@@ -199,9 +209,7 @@ vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ra
     if (last) {  // no scattering left, but the straight pass is none: it goes on, weighted
       throughput *= bsdf.straight_transmittance();
       if (features_pending) feature_weight *= bsdf.straight_transmittance();
-      if (++passes > kMaxPasses || throughput == vec3(0.0f)) break;
-      passed += hit.t;
-      ray = Ray{ctx.origin_towards(ray.direction), ray.direction};
+      if (throughput == vec3(0.0f) || !pass_straight(ctx.origin_towards(ray.direction))) break;
       continue;
     }
     if (!scene.description.lights.empty()) radiance += throughput * punctual_light_contribution(scene, ctx, counters);
@@ -213,10 +221,8 @@ vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ra
     if (!bsdf.sample(wo_local, u.z, {u.x, u.y}, bs)) break;
     throughput *= bs.f * (std::fabs(bs.wi.z) / bs.pdf);
     if (features_pending) feature_weight *= bs.f * (std::fabs(bs.wi.z) / bs.pdf);
-    if (bs.passthrough) {  // on along the same line, the surface as if absent
-      if (++passes > kMaxPasses) break;
-      passed += hit.t;
-      ray = Ray{ctx.origin_towards(ray.direction), ray.direction};
+    if (bs.passthrough) {
+      if (!pass_straight(ctx.origin_towards(ray.direction))) break;
       continue;
     }
     const vec3 wi = frame.to_world(bs.wi);
