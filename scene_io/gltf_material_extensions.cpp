@@ -90,6 +90,23 @@ void read_material_extensions(const tinygltf::Material& src, const TextureResolv
     if (!(mat.anisotropy_strength >= 0.0f && mat.anisotropy_strength <= 1.0f))
       fail("KHR_materials_anisotropy.anisotropyStrength must be in [0, 1]");
   }
+  if (const tinygltf::Value* e = extension(src, "KHR_materials_iridescence")) {
+    mat.iridescence_factor = number(*e, "iridescenceFactor", 0.0f);
+    mat.iridescence_texture = texture(*e, "iridescenceTexture", resolve);
+    mat.iridescence_ior = number(*e, "iridescenceIor", 1.3f);
+    mat.iridescence_thickness_min = number(*e, "iridescenceThicknessMinimum", 100.0f);
+    mat.iridescence_thickness_max = number(*e, "iridescenceThicknessMaximum", 400.0f);
+    mat.iridescence_thickness_texture = texture(*e, "iridescenceThicknessTexture", resolve);
+    if (!(mat.iridescence_factor >= 0.0f && mat.iridescence_factor <= 1.0f))
+      fail("KHR_materials_iridescence.iridescenceFactor must be in [0, 1]");
+    if (!(mat.iridescence_ior >= 1.0f)) fail("KHR_materials_iridescence.iridescenceIor must be at least 1");
+    if (!(mat.iridescence_thickness_min >= 0.0f && mat.iridescence_thickness_max >= 0.0f))
+      fail("KHR_materials_iridescence thicknesses must not be negative");
+  }
+  if (const tinygltf::Value* e = extension(src, "KHR_materials_dispersion")) {
+    mat.dispersion = number(*e, "dispersion", 0.0f);
+    if (!(mat.dispersion >= 0.0f)) fail("KHR_materials_dispersion.dispersion must not be negative");
+  }
   if (const tinygltf::Value* e = extension(src, "KHR_materials_sheen")) {
     mat.sheen_color_factor = color(*e, "sheenColorFactor", glm::vec3(0.0f));
     mat.sheen_color_texture = texture(*e, "sheenColorTexture", resolve);
@@ -102,7 +119,9 @@ void read_material_extensions(const tinygltf::Material& src, const TextureResolv
                       all_finite(mat.attenuation_color) && std::isfinite(mat.clearcoat_factor) &&
                       std::isfinite(mat.clearcoat_roughness_factor) && all_finite(mat.sheen_color_factor) &&
                       std::isfinite(mat.sheen_roughness_factor) && std::isfinite(mat.clearcoat_normal_scale) &&
-                      std::isfinite(mat.anisotropy_rotation) && all_finite(mat.diffuse_transmission_color_factor);
+                      std::isfinite(mat.anisotropy_rotation) && all_finite(mat.diffuse_transmission_color_factor) &&
+                      std::isfinite(mat.iridescence_ior) && std::isfinite(mat.iridescence_thickness_min) &&
+                      std::isfinite(mat.iridescence_thickness_max) && std::isfinite(mat.dispersion);
   if (!finite) fail("has a non-finite extension factor");
 }
 

@@ -69,12 +69,16 @@ std::vector<Config> configs() {
     velvet.sheen_color = vec3(0.9f, 0.4f, 0.6f);
     velvet.sheen_roughness = r;
     out.push_back({"sheen r" + std::to_string(r), velvet});
+    ShadingPoint soap = material(0.5f, r);  // KHR_materials_iridescence over both Fresnels
+    soap.iridescence = 1.0f;
+    soap.iridescence_thickness = 380.0f;
+    out.push_back({"iridescent half-metal r" + std::to_string(r), soap});
   }
   return out;
 }
 
-// Every configuration at three incident angles. 39 x 3 tests, each at significance
-// 0.001 / 117 (Sidak-style correction), so a correct sampler fails with probability 0.1%.
+// Every configuration at three incident angles. 42 x 3 tests, each at significance
+// 0.001 / 126 (Sidak-style correction), so a correct sampler fails with probability 0.1%.
 TEST(GltfBsdf, SamplingMatchesItsPdfChiSquare) {
   const std::vector<Config> all = configs();
   const double alpha = 1e-3 / (3.0 * all.size());
@@ -275,6 +279,9 @@ TEST(GltfBsdf, WhiteFurnaceEveryLosslessMaterialIsOne) {
     coated.clearcoat_roughness = roughness;
     ShadingPoint translucent = white(0.0f);  // half the diffuse base transmitted, white
     translucent.diffuse_transmission = 0.5f;
+    ShadingPoint film_metal = white(1.0f);  // a lossless film over a perfect mirror
+    film_metal.iridescence = 1.0f;
+    film_metal.iridescence_thickness = 400.0f;
     ShadingPoint coated_metal = white(1.0f);
     coated_metal.clearcoat = 0.5f;
     coated_metal.clearcoat_roughness = 0.3f;
@@ -290,6 +297,7 @@ TEST(GltfBsdf, WhiteFurnaceEveryLosslessMaterialIsOne) {
         {"clear coat over white", coated, 1.5f},
         {"diffuse transmission", translucent, 1.5f},
         {"clear coat over metal", coated_metal, 1.5f},
+        {"iridescent film over white metal", film_metal, 1.5f},
     };
     for (const Case& c : cases)
       for (float theta : {0.0f, 45.0f, 80.0f}) {
@@ -303,6 +311,38 @@ TEST(GltfBsdf, WhiteFurnaceEveryLosslessMaterialIsOne) {
         }
       }
   }
+}
+
+// A white diffuse base under an iridescent film: per channel, the base takes what the film
+// does not reflect (the film carried by a Schlick curve the albedo tables hold, bsdf.cpp),
+// so every channel stays within 1% of 1 (measured: 0.14% at worst). Evaluating the film
+// per half vector instead had lost up to 42% at grazing angles on rough bases.
+TEST(GltfBsdf, IridescentFilmOverWhiteKeepsItsEnergy) {
+  double worst = 0.0;
+  for (float roughness : {0.0f, 0.3f, 0.6f, 1.0f})
+    for (float thickness : {250.0f, 500.0f})
+      for (float theta : {0.0f, 45.0f, 80.0f}) {
+        ShadingPoint sp = material(0.0f, roughness, vec3(1.0f));
+        sp.iridescence = 1.0f;
+        sp.iridescence_thickness = thickness;
+        const vec3 wo = direction(theta);
+        const GltfBsdf bsdf(sp, wo, 1.5f);
+        glm::dvec3 sum(0.0);
+        constexpr int n = 50000;
+        for (int i = 0; i < n; ++i) {
+          Sampler rng(SamplerKind::sobol, 3, 0, i, 11);
+          BsdfSample s;
+          const float u = rng.next();
+          if (bsdf.sample(wo, u, rng.next2(), s)) sum += glm::dvec3(s.f * (std::fabs(s.wi.z) / s.pdf));
+        }
+        sum /= n;
+        for (int c = 0; c < 3; ++c) {
+          worst = std::max(worst, std::fabs(sum[c] - 1.0));
+          EXPECT_NEAR(sum[c], 1.0, 0.01) << "roughness " << roughness << " film " << thickness << " nm, theta "
+                                          << theta << ", channel " << c;
+        }
+      }
+  RecordProperty("worst", std::to_string(worst));
 }
 
 // Without compensation GGX loses light; the lobes that need none stay lossless: the

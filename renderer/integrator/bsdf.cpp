@@ -4,6 +4,7 @@ namespace tessera {
 namespace {
 
 float max3(const vec3& v) { return max_component(v); }
+float mean3(const vec3& v) { return (v.r + v.g + v.b) / 3.0f; }
 
 }  // namespace
 
@@ -34,23 +35,28 @@ GltfBsdf::GltfBsdf(const ShadingPoint& sp, const vec3& wo, float eta, const Fram
   const float r = (sp.ior - 1.0f) / (sp.ior + 1.0f);
   f0_ = glm::min(vec3(r * r) * sp.specular_color, vec3(1.0f));
   f0_max_ = max3(f0_);
+  // The film sits on the outside: a ray inside a volume meets the bare interface.
+  if (sp.iridescence > 0.0f && sp.iridescence_thickness > 0.0f && (!refracts_ || eta >= 1.0f)) {
+    iridescence_ = sp.iridescence;
+    film_ = ThinFilm{sp.iridescence_thickness, sp.iridescence_ior, 1.0f + 0.5f * clearcoat_};
+  }
   orient_lobes(sp, frame, wo);
   compensate(wo);
   // Selection probabilities: each lobe's share of the reflected energy, estimated at the
   // macro normal. Every lobe that can be non-zero keeps a non-zero probability.
-  const float fo = reflectance_o_;
+  const vec3 fo = reflectance_o_;
   const float dielectric = 1.0f - metallic_;
   const float tint = std::fmax(luminance(base_), 1e-3f);
   float w[kLobeCount];
-  const float diffuse = dielectric * (1.0f - transmission_) * (1.0f - fo);
+  const float diffuse = dielectric * (1.0f - transmission_) * (1.0f - mean3(fo));
   w[kDiffuse] = diffuse * (1.0f - diffuse_transmission_) * luminance(base_);
   w[kDiffuseTransmission] = diffuse * diffuse_transmission_ * luminance(diffuse_transmission_color_);
-  w[kSpecular] = metallic_ * max3(fresnel_schlick(base_, vec3(1.0f), wo.z)) * e_o_ + dielectric * fo;
+  w[kSpecular] = metallic_ * max3(metal_fresnel(wo.z)) * e_o_ + dielectric * mean3(fo);
   w[kMultiScatter] = metallic_ * (1.0f - e_o_) * max3(multiscatter_color_) * kPi * (1.0f - base_albedo_.albedo_average);
-  w[kTransmission] = dielectric * transmission_ * std::fmax(1.0f - fo, 0.05f) * tint;
+  w[kTransmission] = dielectric * transmission_ * std::fmax(1.0f - mean3(fo), 0.05f) * tint;
   const float under_sheen = sheen_scaling(wo);
   if (!refracts_ && transmission_ > 0.0f)
-    straight_ = coat_scale_ * under_sheen * dielectric * transmission_ * (1.0f - fo) * base_;
+    straight_ = coat_scale_ * under_sheen * dielectric * transmission_ * (vec3(1.0f) - fo) * base_;
   for (int i = 0; i < kSheen; ++i) w[i] *= under_sheen;
   w[kSheen] = sheen_max_ > 0.0f ? sheen_max_ * sheen_albedo(wo.z, sheen_.alpha) : 0.0f;
   for (int i = 0; i < kClearcoat; ++i) w[i] *= coat_scale_;
@@ -89,24 +95,32 @@ void GltfBsdf::orient_lobes(const ShadingPoint& sp, const Frame& frame, const ve
 void GltfBsdf::compensate(const vec3& wo) {
   const float mu = wo.z;
   base_albedo_ = AlbedoSlice(roughness_);
+  if (iridescence_ > 0.0f) {
+    if (metallic_ < 1.0f) film_f0_ = schlick_refit(thin_film_reflectance(film_, mu, f0_), mu);
+    if (metallic_ > 0.0f) metal_film_f0_ = schlick_refit(thin_film_reflectance(film_, mu, base_), mu);
+  }
   e_o_ = base_albedo_.albedo(mu);
   if (refracts_) {
     const InterfaceAlbedo a = dielectric_albedo(mu, roughness_, eta_);
     interface_scale_ = 1.0f / std::fmax(a.reflect + a.transmit, 1e-3f);
-    reflectance_o_ = a.reflect * interface_scale_;  // base_reflectance(mu), read once
+    reflectance_o_ = with_film(vec3(a.reflect * interface_scale_), mu);  // base_reflectance(mu), read once
   } else {
     interface_scale_ = 1.0f / std::fmax(e_o_, 1e-3f);
     reflectance_o_ = base_reflectance(mu);
   }
-  const float e_avg = refracts_ ? dielectric_reflectance_average(roughness_, eta_)
-                                : specular_ * (f0_max_ + (1.0f - f0_max_) * base_albedo_.share_average);
-  base_scale_o_ = e_avg < 1.0f - 1e-4f ? (1.0f - reflectance_o_) / (1.0f - e_avg) : 0.0f;
+  vec3 e_avg(refracts_ ? dielectric_reflectance_average(roughness_, eta_)
+                       : specular_ * (f0_max_ + (1.0f - f0_max_) * base_albedo_.share_average));
+  if (iridescence_ > 0.0f)
+    e_avg = glm::mix(e_avg, film_scale() * (film_f0_ + (vec3(1.0f) - film_f0_) * base_albedo_.share_average), iridescence_);
+  for (int c = 0; c < 3; ++c)
+    base_scale_o_[c] = e_avg[c] < 1.0f - 1e-4f ? (1.0f - reflectance_o_[c]) / (1.0f - e_avg[c]) : 0.0f;
   // Kulla and Conty: the Fresnel average of Schlick's f0..1 is f0 + (1 - f0) / 21, and the
   // light that leaves after k > 1 bounces sums to F_avg^2 E_avg / (1 - F_avg (1 - E_avg)) of
   // the lost share. Below 1e-4 lost on average there is nothing to restore.
   const float e_avg_metal = base_albedo_.albedo_average;
   if (metallic_ > 0.0f && e_avg_metal < 1.0f - 1e-4f) {
-    const vec3 f_avg = base_ + (vec3(1.0f) - base_) / 21.0f;
+    vec3 f_avg = base_ + (vec3(1.0f) - base_) / 21.0f;
+    if (iridescence_ > 0.0f) f_avg = glm::mix(f_avg, metal_film_f0_ + (vec3(1.0f) - metal_film_f0_) / 21.0f, iridescence_);
     const vec3 f_ms = f_avg * f_avg * e_avg_metal / (vec3(1.0f) - f_avg * (1.0f - e_avg_metal));
     multiscatter_color_ = f_ms / (kPi * (1.0f - e_avg_metal));
   }
@@ -121,12 +135,36 @@ void GltfBsdf::compensate(const vec3& wo) {
   }
 }
 
-float GltfBsdf::base_reflectance(float mu) const {
+vec3 GltfBsdf::base_reflectance(float mu) const {
   if (refracts_) {
     const InterfaceAlbedo a = dielectric_albedo(mu, roughness_, eta_);
-    return a.reflect / std::fmax(a.reflect + a.transmit, 1e-3f);
+    return with_film(vec3(a.reflect / std::fmax(a.reflect + a.transmit, 1e-3f)), mu);
   }
-  return specular_ * (f0_max_ + (1.0f - f0_max_) * base_albedo_.schlick_share(mu));
+  return with_film(vec3(specular_ * (f0_max_ + (1.0f - f0_max_) * base_albedo_.schlick_share(mu))), mu);
+}
+
+// KHR_materials_iridescence. The film's Fresnel is not Schlick-shaped, so the albedo tables
+// cannot hold its microfacet average. It is evaluated once per shading point, toward wo, and
+// carried by the Schlick curve through that value (film_f0_, metal_film_f0_; real-time
+// viewers evaluate it at N.V alike): exact for a mirror-like surface, whose half vector is
+// the normal, an approximation of the colour where a rough lobe's half vectors spread; the
+// layering then holds exactly, and a shading point costs one film evaluation per base.
+vec3 GltfBsdf::with_film(const vec3& e, float mu) const {
+  return iridescence_ > 0.0f ? glm::mix(e, film_scale() * film_reflectance(mu), iridescence_) : e;
+}
+
+// The film layer's e(mu): its Schlick curve's microfacet average, from the tables.
+vec3 GltfBsdf::film_reflectance(float mu) const {
+  return film_f0_ + (vec3(1.0f) - film_f0_) * base_albedo_.schlick_share(mu);
+}
+
+// The f0 of the Schlick curve through reflectance f at mu (near grazing, where every curve
+// nears 1 and the fit degenerates, read at mu = 0.05). Where the film cancels more than a
+// bare surface reflects there (f below Schlick's curve for f0 = 0, only toward grazing),
+// f0 = 0: the curve then passes above f, but stays a reflectance the tables hold.
+vec3 GltfBsdf::schlick_refit(const vec3& f, float mu) {
+  const float m = 1.0f - std::fmax(mu, 0.05f), p = m * m * m * m * m;
+  return glm::clamp((f - p) / (1.0f - p), 0.0f, 1.0f);
 }
 
 vec3 GltfBsdf::multiscatter(const vec3& wo, const vec3& wi) const {
@@ -139,8 +177,14 @@ float GltfBsdf::sheen_scaling(const vec3& w) const {
 }
 
 vec3 GltfBsdf::dielectric_fresnel(float cos_oh) const {
-  if (refracts_) return vec3(fresnel_dielectric(cos_oh, eta_));
-  return specular_ * fresnel_schlick(f0_, vec3(1.0f), cos_oh);
+  const vec3 f = refracts_ ? vec3(fresnel_dielectric(cos_oh, eta_)) : specular_ * fresnel_schlick(f0_, vec3(1.0f), cos_oh);
+  if (iridescence_ <= 0.0f) return f;
+  return glm::mix(f, film_scale() * fresnel_schlick(film_f0_, vec3(1.0f), cos_oh), iridescence_);
+}
+
+vec3 GltfBsdf::metal_fresnel(float cos_oh) const {
+  const vec3 f = fresnel_schlick(base_, vec3(1.0f), cos_oh);
+  return iridescence_ > 0.0f ? glm::mix(f, fresnel_schlick(metal_film_f0_, vec3(1.0f), cos_oh), iridescence_) : f;
 }
 
 float GltfBsdf::coat_fresnel(float cos_o) const {
@@ -152,10 +196,10 @@ vec3 GltfBsdf::reflection(const vec3& wo, const vec3& wi) const {
   const vec3 h = glm::normalize(wo + wi);
   const float cos_oh = glm::dot(wo, h);
   const float spec = ggx_.D(h) * ggx_.G2(wo, wi) / (4.0f * wo.z * wi.z);
-  const float base_share = base_scale_o_ * (1.0f - base_reflectance(wi.z));
+  const vec3 base_share = base_scale_o_ * (vec3(1.0f) - base_reflectance(wi.z));
   const vec3 dielectric = (1.0f - transmission_) * (1.0f - diffuse_transmission_) * base_share * base_ * kInvPi +
                           dielectric_fresnel(cos_oh) * (spec * interface_scale_);
-  const vec3 metal = fresnel_schlick(base_, vec3(1.0f), cos_oh) * spec + multiscatter(wo, wi);
+  const vec3 metal = metal_fresnel(cos_oh) * spec + multiscatter(wo, wi);
   return glm::mix(dielectric, metal, metallic_);
 }
 
@@ -167,18 +211,17 @@ vec3 GltfBsdf::transmission(const vec3& wo, const vec3& wi) const {
   if (h.z < 0.0f) h = -h;
   const float cos_oh = glm::dot(wo, h), cos_ih = glm::dot(wi, h);
   if (cos_oh <= 0.0f || cos_ih >= 0.0f) return vec3(0.0f);  // back-facing microfacet
-  const float f = fresnel_dielectric(cos_oh, eta_);
   const float denom = sqr(cos_ih + cos_oh / eta_) * std::fabs(wi.z) * wo.z;
   // Radiance is compressed by eta^2 entering a denser medium (non-symmetric scattering).
-  const float ft = ggx_.D(h) * (1.0f - f) * ggx_.G2(wo, wi) * std::fabs(cos_ih * cos_oh / denom) / sqr(eta_);
-  return (1.0f - metallic_) * transmission_ * interface_scale_ * base_ * ft;
+  const float ft = ggx_.D(h) * ggx_.G2(wo, wi) * std::fabs(cos_ih * cos_oh / denom) / sqr(eta_);
+  return (1.0f - metallic_) * transmission_ * interface_scale_ * base_ * (vec3(1.0f) - dielectric_fresnel(cos_oh)) * ft;
 }
 
 // The Lambertian transmission of the diffuse base, layered under the interface like the
 // diffuse reflection (the cosine toward wi taken on its side).
 vec3 GltfBsdf::diffuse_transmission(const vec3& wo, const vec3& wi) const {
   if (diffuse_transmission_ <= 0.0f) return vec3(0.0f);
-  const float base_share = base_scale_o_ * (1.0f - base_reflectance(-wi.z));
+  const vec3 base_share = base_scale_o_ * (vec3(1.0f) - base_reflectance(-wi.z));
   return (1.0f - metallic_) * (1.0f - transmission_) * diffuse_transmission_ * base_share *
          diffuse_transmission_color_ * kInvPi;
 }

@@ -26,6 +26,9 @@
 // them kept; the diffuse base takes what the interface reflects, e(mu) = its compensated
 // reflectance, in Kulla and Conty's reciprocal form, so a white base under any specular
 // layer, and the clear coat over any lossless layer, reflect everything.
+// KHR_materials_iridescence mixes a thin film's Fresnel (thin_film.h) into both specular
+// Fresnel terms, read once per shading point toward wo and carried by a Schlick curve the
+// albedo tables hold (bsdf.cpp, with_film), so the layering stays exact.
 // Directions are sampled per lobe (cosine, GGX visible normals, the multiple-scattering
 // lobe's tabulated shape) and combined as a mixture whose pdf is the weighted sum of the
 // lobes' pdfs. Plain struct, no virtual calls.
@@ -35,6 +38,7 @@
 #include "renderer/integrator/microfacet.h"
 #include "renderer/integrator/microfacet_albedo.h"
 #include "renderer/integrator/sheen.h"
+#include "renderer/integrator/thin_film.h"
 
 namespace tessera {
 
@@ -82,8 +86,13 @@ class GltfBsdf {
 
  private:
   vec3 dielectric_fresnel(float cos_oh) const;  // s * F for the dielectric layer
+  vec3 metal_fresnel(float cos_oh) const;
   float coat_fresnel(float cos_o) const;
-  float base_reflectance(float mu) const;  // e(mu): the compensated interface's reflectance
+  vec3 base_reflectance(float mu) const;  // e(mu): the compensated interface's reflectance
+  vec3 with_film(const vec3& e, float mu) const;  // e(mu) with the iridescent film mixed in
+  static vec3 schlick_refit(const vec3& f, float mu);
+  vec3 film_reflectance(float mu) const;  // the film's e(mu), the Schlick curve through film_f0_
+  float film_scale() const { return refracts_ ? 1.0f : specular_; }  // KHR_materials_specular's factor
   void compensate(const vec3& wo);
   vec3 multiscatter(const vec3& wo, const vec3& wi) const;  // the metal's extra lobe
   void orient_lobes(const ShadingPoint& sp, const Frame& frame, const vec3& wo);
@@ -106,11 +115,14 @@ class GltfBsdf {
   AlbedoSlice base_albedo_, coat_albedo_;  // the tables at those roughnesses (set in compensate)
   float f0_max_;  // largest channel of f0 (before s): e(mu) of the Schlick interface follows it
   float interface_scale_ = 1.0f;  // 1 / E_interface(mu_o)
-  float base_scale_o_ = 1.0f;  // (1 - e(mu_o)) / (1 - avg e): the diffuse base's share, wo's half
+  vec3 base_scale_o_{1.0f};  // (1 - e(mu_o)) / (1 - avg e): the diffuse base's share, wo's half
   float e_o_ = 1.0f;  // E(mu_o) of the base lobe
-  float reflectance_o_ = 0.0f;  // e(mu_o): what the compensated interface reflects toward wo
+  vec3 reflectance_o_{0.0f};  // e(mu_o): what the compensated interface reflects toward wo
   vec3 multiscatter_color_{0.0f};  // Kulla-Conty's Fresnel term / (pi (1 - avg E)); 0 = no lobe
   float coat_interface_scale_ = 1.0f;  // 1 / E_coat(mu_o)
+  float iridescence_ = 0.0f;  // KHR_materials_iridescence: 0 = no film
+  ThinFilm film_;
+  vec3 film_f0_{0.0f}, metal_film_f0_{0.0f};  // Schlick's f0 standing in for the film (dielectric, metal base)
   bool coat_tilted_ = false;  // the coat has its own normal (clearcoatNormalTexture)
   Frame coat_frame_{{1.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, {0.0f, 0.0f, 1.0f}};  // local to the coat's
   vec3 straight_{0.0f};  // the thin-walled straight pass; 0 for a volume or no transmission

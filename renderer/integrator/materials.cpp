@@ -16,7 +16,8 @@ MaterialTable::MaterialTable(const SceneDescription& scene) : materials_(scene.m
     for (const TextureRef* linear :
          {&m.metallic_roughness_texture, &m.normal_texture, &m.transmission_texture, &m.thickness_texture,
           &m.specular_texture, &m.clearcoat_texture, &m.clearcoat_roughness_texture, &m.sheen_roughness_texture,
-          &m.clearcoat_normal_texture, &m.anisotropy_texture, &m.diffuse_transmission_texture})
+          &m.clearcoat_normal_texture, &m.anisotropy_texture, &m.diffuse_transmission_texture,
+          &m.iridescence_texture, &m.iridescence_thickness_texture})
       need(*linear, linear_, ColorEncoding::Linear);
   }
 }
@@ -124,6 +125,16 @@ ShadingPoint MaterialTable::evaluate(const SurfaceHit& hit) const {
       m.diffuse_transmission_factor * lookup(m.diffuse_transmission_texture, linear_, hit).a, 0.0f, 1.0f);
   sp.diffuse_transmission_color = glm::clamp(
       m.diffuse_transmission_color_factor * vec3(lookup(m.diffuse_transmission_color_texture, srgb_, hit)), 0.0f, 1.0f);
+  sp.iridescence = glm::clamp(m.iridescence_factor * lookup(m.iridescence_texture, linear_, hit).r, 0.0f, 1.0f);
+  if (sp.iridescence > 0.0f) {
+    sp.iridescence_ior = m.iridescence_ior;
+    sp.iridescence_thickness =
+        m.iridescence_thickness_texture.present()
+            ? glm::mix(m.iridescence_thickness_min, m.iridescence_thickness_max,
+                       lookup(m.iridescence_thickness_texture, linear_, hit).g)
+            : m.iridescence_thickness_max;
+  }
+  sp.dispersion = sp.thin_walled ? 0.0f : m.dispersion;  // a property of the volume
   sp.sheen_color = glm::clamp(m.sheen_color_factor * vec3(lookup(m.sheen_color_texture, srgb_, hit)), 0.0f, 1.0f);
   sp.sheen_roughness = glm::clamp(m.sheen_roughness_factor * lookup(m.sheen_roughness_texture, linear_, hit).a, 0.0f, 1.0f);
   return sp;

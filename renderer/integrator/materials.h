@@ -29,6 +29,9 @@ struct ShadingPoint {
   vec3 diffuse_transmission_color{1.0f};
   float anisotropy = 0.0f;  // KHR_materials_anisotropy strength
   vec3 anisotropy_direction{0.0f};  // world, in the tangent plane; zero = isotropic
+  float iridescence = 0.0f;  // KHR_materials_iridescence: mix toward the film's Fresnel
+  float iridescence_ior = 1.3f, iridescence_thickness = 0.0f;  // the film; thickness in nm
+  float dispersion = 0.0f;  // KHR_materials_dispersion: 20 / Abbe number; 0 = none
   vec3 sheen_color{0.0f};
   float sheen_roughness = 0.0f;
   bool unlit = false;

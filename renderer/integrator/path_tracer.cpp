@@ -2,6 +2,7 @@
 
 #include "renderer/integrator/bsdf.h"
 #include "renderer/integrator/punctual_lights.h"
+#include "renderer/integrator/spectrum.h"
 
 namespace tessera {
 namespace {
@@ -149,6 +150,9 @@ vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ra
   // vertex, as far away as the whole straight line.
   float passed = 0.0f;
   int passes = 0;
+  // The wavelength (nm) this path carries since its first dispersive surface; 0 = none yet
+  // (spectrum.h: the throughput then holds the wavelength's RGB weight).
+  float wavelength = 0.0f;
   const LightSampling mode = params.light_sampling;
   const bool light_sampling = !scene.area_lights->empty() && mode != LightSampling::BsdfOnly;
   const bool environment_sampling = scene.environment.has_image() && mode != LightSampling::BsdfOnly;
@@ -180,7 +184,7 @@ vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ra
       break;
     }
     SurfaceHit s = scene.geometry->surface(ray, hit);
-    const ShadingPoint sp = scene.materials.evaluate(s);
+    ShadingPoint sp = scene.materials.evaluate(s);
     if ((glm::dot(s.ng, ray.direction) < 0.0f || sp.double_sided) && sp.emission != vec3(0.0f)) {
       // Light sampling could have found this point too: weigh the two strategies.
       SurfaceHit from_vertex = s;
@@ -202,6 +206,14 @@ vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ra
     const bool last = bounce >= params.max_bounces;
     if (last && !(sp.thin_walled && sp.transmission > 0.0f)) break;
 
+    if (sp.dispersion > 0.0f && sp.transmission > 0.0f) {  // KHR_materials_dispersion
+      if (wavelength == 0.0f) {
+        const WavelengthSample w = sample_wavelength(rng.next());
+        wavelength = w.lambda;
+        throughput *= w.weight;
+      }
+      sp.ior = dispersive_ior(sp.ior, sp.dispersion, wavelength);
+    }
     const Frame frame = Frame::from_normal(s.ns);
     const vec3 wo_local = frame.to_local(-ray.direction);
     const GltfBsdf bsdf(sp, wo_local, front ? sp.ior : 1.0f / sp.ior, frame);

@@ -105,6 +105,14 @@ struct Material {
   float anisotropy_strength = 0.0f;
   float anisotropy_rotation = 0.0f;
   TextureRef anisotropy_texture;  // RG = direction in tangent space ([0,1] to [-1,1]), B = strength
+  // KHR_materials_iridescence: a thin dielectric film over the specular layer
+  float iridescence_factor = 0.0f;
+  TextureRef iridescence_texture;  // R channel
+  float iridescence_ior = 1.3f;
+  float iridescence_thickness_min = 100.0f, iridescence_thickness_max = 400.0f;  // nm
+  TextureRef iridescence_thickness_texture;  // G: mix(min, max, G); without it the maximum
+  // KHR_materials_dispersion: 20 / Abbe number of the volume's glass; 0 = none
+  float dispersion = 0.0f;
   // KHR_materials_sheen
   glm::vec3 sheen_color_factor{0.0f};
   TextureRef sheen_color_texture;  // sRGB encoded
