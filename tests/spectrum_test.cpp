@@ -146,7 +146,9 @@ TEST(Dispersion, PrismExitAnglePerWavelengthMatchesSnell) {
     const double exit = std::acos(std::min(1.0, static_cast<double>(-out.z)));
     const double expected = prism_exit_angle(cauchy_index(1.6, 20.0, lambda), apex, theta1);
     EXPECT_NEAR(glm::degrees(exit), glm::degrees(expected), 0.05) << lambda << " nm";
-    if (previous > 0.0) EXPECT_LT(exit, previous) << "longer waves bend less";
+    if (previous > 0.0) {
+      EXPECT_LT(exit, previous) << "longer waves bend less";
+    }
     previous = exit;
   }
 }
