@@ -313,6 +313,26 @@ TEST(GltfBsdf, WhiteFurnaceEveryLosslessMaterialIsOne) {
   }
 }
 
+// White anisotropic metals and dielectrics over white (KHR_materials_anisotropy) in the
+// furnace, at every strength, roughness and view, along, across and between the direction:
+// the lobe's albedo comes from its own table (per strength and azimuth), within 1%
+// (measured: 0.7% at worst, 0.1% on average; reading the isotropic table at the alphas' root
+// mean square instead was 23% off at worst for metals, 35% over white).
+TEST(GltfBsdf, WhiteFurnaceAnisotropic) {
+  for (float metallic : {1.0f, 0.0f})
+    for (float roughness : {0.0f, 0.3f, 0.6f, 1.0f})
+      for (float strength : {0.5f, 1.0f})
+        for (float theta : {0.0f, 45.0f, 80.0f})
+          for (float phi : {0.0f, 45.0f, 90.0f}) {
+            ShadingPoint sp = material(metallic, roughness, vec3(1.0f));
+            sp.anisotropy = strength;
+            sp.anisotropy_direction = vec3(1.0f, 0.0f, 0.0f);
+            EXPECT_NEAR(albedo(sp, direction(theta, phi), 1.5f, 50000, false).sampled, 1.0, 0.01)
+                << "metallic " << metallic << " roughness " << roughness << " strength " << strength << " theta "
+                << theta << " phi " << phi;
+          }
+}
+
 // A white diffuse base under an iridescent film: per channel, the base takes what the film
 // does not reflect (the film carried by a Schlick curve the albedo tables hold, bsdf.cpp),
 // so every channel stays within 1% of 1 (measured: 0.14% at worst). Evaluating the film

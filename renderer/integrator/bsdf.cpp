@@ -51,7 +51,7 @@ GltfBsdf::GltfBsdf(const ShadingPoint& sp, const vec3& wo, float eta, const Fram
   const float diffuse = dielectric * (1.0f - transmission_) * (1.0f - mean3(fo));
   w[kDiffuse] = diffuse * (1.0f - diffuse_transmission_) * luminance(base_);
   w[kDiffuseTransmission] = diffuse * diffuse_transmission_ * luminance(diffuse_transmission_color_);
-  w[kSpecular] = metallic_ * max3(metal_fresnel(wo.z)) * e_o_ + dielectric * mean3(fo);
+  w[kSpecular] = metallic_ * max3(metal_fresnel(wo.z) * metal_scale_) * e_o_ + dielectric * mean3(fo);
   w[kMultiScatter] = metallic_ * (1.0f - e_o_) * max3(multiscatter_color_) * kPi * (1.0f - base_albedo_.albedo_average);
   w[kTransmission] = dielectric * transmission_ * std::fmax(1.0f - mean3(fo), 0.05f) * tint;
   const float under_sheen = sheen_scaling(wo);
@@ -67,18 +67,23 @@ GltfBsdf::GltfBsdf(const ShadingPoint& sp, const vec3& wo, float eta, const Fram
 }
 
 // KHR_materials_anisotropy (the specification's alpha_t = mix(alpha, 1, strength^2) along the
-// direction, alpha_b = alpha across; the isotropic albedo tables are read at the root mean
-// square of the two alphas: white anisotropic metals then stay within 3% of 1 on average,
-// up to 23% off at strength 1 on a mirror-smooth base) and the
-// clear coat's own normal, both from world directions into the shading frame.
+// direction, alpha_b = alpha across; its albedo toward wo from its own table, and the
+// isotropic tables, for what lies under the specular layer, at the root mean square of the
+// two alphas) and the clear coat's own normal, both from world directions into the shading
+// frame.
 void GltfBsdf::orient_lobes(const ShadingPoint& sp, const Frame& frame, const vec3& wo) {
   if (sp.anisotropy > 0.0f && sp.anisotropy_direction != vec3(0.0f) && !refracts_) {
     const vec3 d = frame.to_local(sp.anisotropy_direction);
     const float len = std::sqrt(d.x * d.x + d.y * d.y);
     if (len > 1e-6f) {
       const float alpha = ggx_.alpha_x, along = alpha + (1.0f - alpha) * sqr(sp.anisotropy);
-      ggx_ = GgxDistribution(along, alpha, vec2(d.x, d.y) / len);
+      const vec2 axis = vec2(d.x, d.y) / len;
+      ggx_ = GgxDistribution(along, alpha, axis);
+      const float r = roughness_;
       roughness_ = std::sqrt(std::sqrt(0.5f * (along * along + alpha * alpha)));
+      const float projected = std::sqrt(wo.x * wo.x + wo.y * wo.y);
+      const float azimuth = projected > 1e-6f ? std::acos(std::fmin(1.0f, std::fabs(glm::dot(vec2(wo.x, wo.y), axis)) / projected)) : 0.0f;
+      anisotropic_o_ = anisotropic_ggx_albedo(wo.z, azimuth, r, sp.anisotropy);
     }
   }
   if (clearcoat_ > 0.0f && sp.clearcoat_normal != vec3(0.0f)) {
@@ -99,14 +104,18 @@ void GltfBsdf::compensate(const vec3& wo) {
     if (metallic_ < 1.0f) film_f0_ = schlick_refit(thin_film_reflectance(film_, mu, f0_), mu);
     if (metallic_ > 0.0f) metal_film_f0_ = schlick_refit(thin_film_reflectance(film_, mu, base_), mu);
   }
-  e_o_ = base_albedo_.albedo(mu);
+  const bool anisotropic = anisotropic_o_.schlick_share >= 0.0f;
+  e_o_ = anisotropic ? anisotropic_o_.albedo : base_albedo_.albedo(mu);
   if (refracts_) {
     const InterfaceAlbedo a = dielectric_albedo(mu, roughness_, eta_);
     interface_scale_ = 1.0f / std::fmax(a.reflect + a.transmit, 1e-3f);
     reflectance_o_ = with_film(vec3(a.reflect * interface_scale_), mu);  // base_reflectance(mu), read once
   } else {
     interface_scale_ = 1.0f / std::fmax(e_o_, 1e-3f);
-    reflectance_o_ = base_reflectance(mu);
+    // Toward wo, an anisotropic lobe reflects its own share; the base's layering stays on
+    // the isotropic tables (for wi and the average), so the base takes exactly the rest.
+    reflectance_o_ = anisotropic ? with_film(vec3(specular_ * (f0_max_ + (1.0f - f0_max_) * anisotropic_o_.schlick_share)), mu)
+                                 : base_reflectance(mu);
   }
   vec3 e_avg(refracts_ ? dielectric_reflectance_average(roughness_, eta_)
                        : specular_ * (f0_max_ + (1.0f - f0_max_) * base_albedo_.share_average));
@@ -117,10 +126,14 @@ void GltfBsdf::compensate(const vec3& wo) {
   // Kulla and Conty: the Fresnel average of Schlick's f0..1 is f0 + (1 - f0) / 21, and the
   // light that leaves after k > 1 bounces sums to F_avg^2 E_avg / (1 - F_avg (1 - E_avg)) of
   // the lost share. Below 1e-4 lost on average there is nothing to restore.
+  // An anisotropic metal is scaled instead (Turquin 2019: 1 + F0 (1 - E) / E, exact for
+  // F = 1), as its lost light depends on wo's azimuth, which the isotropic lobe cannot follow.
   const float e_avg_metal = base_albedo_.albedo_average;
-  if (metallic_ > 0.0f && e_avg_metal < 1.0f - 1e-4f) {
-    vec3 f_avg = base_ + (vec3(1.0f) - base_) / 21.0f;
-    if (iridescence_ > 0.0f) f_avg = glm::mix(f_avg, metal_film_f0_ + (vec3(1.0f) - metal_film_f0_) / 21.0f, iridescence_);
+  const vec3 f0_metal = glm::mix(base_, metal_film_f0_, iridescence_);
+  if (metallic_ > 0.0f && anisotropic) {
+    metal_scale_ = vec3(1.0f) + f0_metal * ((1.0f - e_o_) / std::fmax(e_o_, 1e-3f));
+  } else if (metallic_ > 0.0f && e_avg_metal < 1.0f - 1e-4f) {
+    const vec3 f_avg = f0_metal + (vec3(1.0f) - f0_metal) / 21.0f;
     const vec3 f_ms = f_avg * f_avg * e_avg_metal / (vec3(1.0f) - f_avg * (1.0f - e_avg_metal));
     multiscatter_color_ = f_ms / (kPi * (1.0f - e_avg_metal));
   }
@@ -199,7 +212,7 @@ vec3 GltfBsdf::reflection(const vec3& wo, const vec3& wi) const {
   const vec3 base_share = base_scale_o_ * (vec3(1.0f) - base_reflectance(wi.z));
   const vec3 dielectric = (1.0f - transmission_) * (1.0f - diffuse_transmission_) * base_share * base_ * kInvPi +
                           dielectric_fresnel(cos_oh) * (spec * interface_scale_);
-  const vec3 metal = metal_fresnel(cos_oh) * spec + multiscatter(wo, wi);
+  const vec3 metal = metal_fresnel(cos_oh) * metal_scale_ * spec + multiscatter(wo, wi);
   return glm::mix(dielectric, metal, metallic_);
 }
 

@@ -25,7 +25,9 @@
 // 2019): reflection plus transmission then sum to 1 from every direction, the split between
 // them kept; the diffuse base takes what the interface reflects, e(mu) = its compensated
 // reflectance, in Kulla and Conty's reciprocal form, so a white base under any specular
-// layer, and the clear coat over any lossless layer, reflect everything.
+// layer, and the clear coat over any lossless layer, reflect everything. The anisotropic lobe
+// (KHR_materials_anisotropy) has its own albedo table per strength and wo's azimuth; its
+// metal is scaled by 1 + F0 (1 - E(wo)) / E(wo) (Turquin) instead of the extra lobe.
 // KHR_materials_iridescence mixes a thin film's Fresnel (thin_film.h) into both specular
 // Fresnel terms, read once per shading point toward wo and carried by a Schlick curve the
 // albedo tables hold (bsdf.cpp, with_film), so the layering stays exact.
@@ -119,6 +121,8 @@ class GltfBsdf {
   float e_o_ = 1.0f;  // E(mu_o) of the base lobe
   vec3 reflectance_o_{0.0f};  // e(mu_o): what the compensated interface reflects toward wo
   vec3 multiscatter_color_{0.0f};  // Kulla-Conty's Fresnel term / (pi (1 - avg E)); 0 = no lobe
+  vec3 metal_scale_{1.0f};  // an anisotropic metal's compensation instead of that lobe
+  AnisotropicAlbedo anisotropic_o_{1.0f, -1.0f};  // the anisotropic lobe's toward wo; share < 0: isotropic
   float coat_interface_scale_ = 1.0f;  // 1 / E_coat(mu_o)
   float iridescence_ = 0.0f;  // KHR_materials_iridescence: 0 = no film
   ThinFilm film_;

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "renderer/math.h"
 #include "renderer/integrator/microfacet_tables.inc"  // generated: the build directory
 
 namespace tessera {
@@ -113,6 +114,22 @@ AlbedoSlice::AlbedoSlice(float roughness) {
   t_ = r.t;
   albedo_average = lerp(kEAverage[r.i], kEAverage[r.i + 1], r.t);
   share_average = lerp(kShareAverage[r.i], kShareAverage[r.i + 1], r.t);
+}
+
+AnisotropicAlbedo anisotropic_ggx_albedo(float mu, float azimuth, float roughness, float strength) {
+  const GridPos m = locate(mu, kAnisoMu), a = locate(azimuth / (0.5f * kPi), kAnisoAzimuth);
+  const GridPos r = locate(roughness, kAnisoRoughness), s = locate(strength, kAnisoStrength);
+  // [roughness][strength][azimuth][mu], linear in each.
+  auto read = [&](const float* table) {
+    auto at = [&](int ri, int si, int ai) {
+      const float* v = table + ((static_cast<std::ptrdiff_t>(ri) * kAnisoStrength + si) * kAnisoAzimuth + ai) * kAnisoMu;
+      return lerp(v[m.i], v[m.i + 1], m.t);
+    };
+    auto over_azimuth = [&](int ri, int si) { return lerp(at(ri, si, a.i), at(ri, si, a.i + 1), a.t); };
+    auto over_strength = [&](int ri) { return lerp(over_azimuth(ri, s.i), over_azimuth(ri, s.i + 1), s.t); };
+    return lerp(over_strength(r.i), over_strength(r.i + 1), r.t);
+  };
+  return {read(kAnisotropicE), read(kAnisotropicShare)};
 }
 
 float ggx_albedo(float mu, float roughness) { return plane(kE, mu, roughness); }

@@ -7,6 +7,9 @@
 //                   Fresnel of any f0 the reflectance is f0 E + (1 - f0) E5
 //   dielectric:     reflection and refraction of an exact-Fresnel interface of relative index
 //                   eta (entering a denser medium, eta > 1, or leaving it, eta < 1)
+//   anisotropic:    E of KHR_materials_anisotropy's lobe (alpha r^2 across the direction,
+//                   mix(r^2, 1, strength^2) along it) per strength and wo's azimuth to the
+//                   direction (symmetric: 0 to 90 degrees)
 // mu is the cosine of the outgoing direction, r the glTF roughness (alpha = r^2). Averages
 // are cosine-weighted over the hemisphere: avg(g) = 2 * integral of g(mu) mu dmu.
 #pragma once
@@ -18,6 +21,7 @@ namespace tessera {
 // fast with the index near the critical angle and slowly with roughness.
 constexpr int kAlbedoMu = 32, kAlbedoRoughness = 32, kInterfaceRoughness = 16, kAlbedoIor = 32;
 constexpr float kAlbedoIorMax = 3.0f;
+constexpr int kAnisoMu = 32, kAnisoRoughness = 16, kAnisoStrength = 8, kAnisoAzimuth = 8;
 
 float ggx_albedo(float mu, float roughness);  // E
 float ggx_schlick_albedo(float mu, float roughness);  // E5
@@ -45,6 +49,13 @@ class AlbedoSlice {
   const float *e0_ = nullptr, *e1_ = nullptr, *s0_ = nullptr, *s1_ = nullptr;  // the rows about the roughness
   float t_ = 0.0f;  // the upper row's weight
 };
+
+// E and E5 / E of the anisotropic lobe; azimuth = |angle| in radians between wo's projection
+// on the surface and the anisotropy direction, folded into [0, pi/2].
+struct AnisotropicAlbedo {
+  float albedo = 1.0f, schlick_share = 0.0f;
+};
+AnisotropicAlbedo anisotropic_ggx_albedo(float mu, float azimuth, float roughness, float strength);
 
 struct InterfaceAlbedo {
   float reflect = 1.0f, transmit = 0.0f;
