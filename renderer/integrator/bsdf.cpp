@@ -35,6 +35,8 @@ GltfBsdf::GltfBsdf(const ShadingPoint& sp, const vec3& wo, float eta, const Fram
   const float r = (sp.ior - 1.0f) / (sp.ior + 1.0f);
   f0_ = glm::min(vec3(r * r) * sp.specular_color, vec3(1.0f));
   f0_max_ = max3(f0_);
+  spec_f0_ = f0_;
+  metal_f0_ = base_;
   // The film sits on the outside: a ray inside a volume meets the bare interface.
   if (sp.iridescence > 0.0f && sp.iridescence_thickness > 0.0f && (!refracts_ || eta >= 1.0f)) {
     iridescence_ = sp.iridescence;
@@ -103,6 +105,9 @@ void GltfBsdf::compensate(const vec3& wo) {
   if (iridescence_ > 0.0f) {
     if (metallic_ < 1.0f) film_f0_ = schlick_refit(thin_film_reflectance(film_, mu, f0_), mu);
     if (metallic_ > 0.0f) metal_film_f0_ = schlick_refit(thin_film_reflectance(film_, mu, base_), mu);
+    // Schlick's curve is linear in f0: mixing two curves is one curve (the film's, mixed in).
+    spec_f0_ = glm::mix(f0_, film_f0_, iridescence_);
+    metal_f0_ = glm::mix(base_, metal_film_f0_, iridescence_);
   }
   const bool anisotropic = anisotropic_o_.schlick_share >= 0.0f;
   e_o_ = anisotropic ? anisotropic_o_.albedo : base_albedo_.albedo(mu);
@@ -129,11 +134,10 @@ void GltfBsdf::compensate(const vec3& wo) {
   // An anisotropic metal is scaled instead (Turquin 2019: 1 + F0 (1 - E) / E, exact for
   // F = 1), as its lost light depends on wo's azimuth, which the isotropic lobe cannot follow.
   const float e_avg_metal = base_albedo_.albedo_average;
-  const vec3 f0_metal = glm::mix(base_, metal_film_f0_, iridescence_);
   if (metallic_ > 0.0f && anisotropic) {
-    metal_scale_ = vec3(1.0f) + f0_metal * ((1.0f - e_o_) / std::fmax(e_o_, 1e-3f));
+    metal_scale_ = vec3(1.0f) + metal_f0_ * ((1.0f - e_o_) / std::fmax(e_o_, 1e-3f));
   } else if (metallic_ > 0.0f && e_avg_metal < 1.0f - 1e-4f) {
-    const vec3 f_avg = f0_metal + (vec3(1.0f) - f0_metal) / 21.0f;
+    const vec3 f_avg = metal_f0_ + (vec3(1.0f) - metal_f0_) / 21.0f;
     const vec3 f_ms = f_avg * f_avg * e_avg_metal / (vec3(1.0f) - f_avg * (1.0f - e_avg_metal));
     multiscatter_color_ = f_ms / (kPi * (1.0f - e_avg_metal));
   }
@@ -189,15 +193,9 @@ float GltfBsdf::sheen_scaling(const vec3& w) const {
   return sheen_max_ > 0.0f ? 1.0f - sheen_max_ * sheen_albedo(std::fabs(w.z), sheen_.alpha) : 1.0f;
 }
 
-vec3 GltfBsdf::dielectric_fresnel(float cos_oh) const {
-  const vec3 f = refracts_ ? vec3(fresnel_dielectric(cos_oh, eta_)) : specular_ * fresnel_schlick(f0_, vec3(1.0f), cos_oh);
-  if (iridescence_ <= 0.0f) return f;
-  return glm::mix(f, film_scale() * fresnel_schlick(film_f0_, vec3(1.0f), cos_oh), iridescence_);
-}
-
-vec3 GltfBsdf::metal_fresnel(float cos_oh) const {
-  const vec3 f = fresnel_schlick(base_, vec3(1.0f), cos_oh);
-  return iridescence_ > 0.0f ? glm::mix(f, fresnel_schlick(metal_film_f0_, vec3(1.0f), cos_oh), iridescence_) : f;
+vec3 GltfBsdf::refracting_fresnel(float cos_oh) const {
+  const vec3 f(fresnel_dielectric(cos_oh, eta_));
+  return iridescence_ > 0.0f ? glm::mix(f, fresnel_schlick(film_f0_, vec3(1.0f), cos_oh), iridescence_) : f;
 }
 
 float GltfBsdf::coat_fresnel(float cos_o) const {
@@ -209,11 +207,14 @@ vec3 GltfBsdf::reflection(const vec3& wo, const vec3& wi) const {
   const vec3 h = glm::normalize(wo + wi);
   const float cos_oh = glm::dot(wo, h);
   const float spec = ggx_.D(h) * ggx_.G2(wo, wi) / (4.0f * wo.z * wi.z);
-  const vec3 base_share = base_scale_o_ * (vec3(1.0f) - base_reflectance(wi.z));
-  const vec3 dielectric = (1.0f - transmission_) * (1.0f - diffuse_transmission_) * base_share * base_ * kInvPi +
-                          dielectric_fresnel(cos_oh) * (spec * interface_scale_);
-  const vec3 metal = metal_fresnel(cos_oh) * metal_scale_ * spec + multiscatter(wo, wi);
-  return glm::mix(dielectric, metal, metallic_);
+  vec3 f(0.0f);
+  if (metallic_ < 1.0f) {
+    const vec3 base_share = base_scale_o_ * (vec3(1.0f) - base_reflectance(wi.z));
+    f = (1.0f - metallic_) * ((1.0f - transmission_) * (1.0f - diffuse_transmission_) * base_share * base_ * kInvPi +
+                              dielectric_fresnel(cos_oh) * (spec * interface_scale_));
+  }
+  if (metallic_ > 0.0f) f += metallic_ * (metal_fresnel(cos_oh) * metal_scale_ * spec + multiscatter(wo, wi));
+  return f;
 }
 
 vec3 GltfBsdf::transmission(const vec3& wo, const vec3& wi) const {

@@ -87,8 +87,11 @@ class GltfBsdf {
   float lobe_probability(Lobe lobe) const { return weight_[lobe]; }
 
  private:
-  vec3 dielectric_fresnel(float cos_oh) const;  // s * F for the dielectric layer
-  vec3 metal_fresnel(float cos_oh) const;
+  vec3 dielectric_fresnel(float cos_oh) const {  // s * F for the dielectric layer
+    return refracts_ ? refracting_fresnel(cos_oh) : specular_ * fresnel_schlick(spec_f0_, vec3(1.0f), cos_oh);
+  }
+  vec3 refracting_fresnel(float cos_oh) const;  // exact, with the film mixed in
+  vec3 metal_fresnel(float cos_oh) const { return fresnel_schlick(metal_f0_, vec3(1.0f), cos_oh); }
   float coat_fresnel(float cos_o) const;
   vec3 base_reflectance(float mu) const;  // e(mu): the compensated interface's reflectance
   vec3 with_film(const vec3& e, float mu) const;  // e(mu) with the iridescent film mixed in
@@ -127,6 +130,7 @@ class GltfBsdf {
   float iridescence_ = 0.0f;  // KHR_materials_iridescence: 0 = no film
   ThinFilm film_;
   vec3 film_f0_{0.0f}, metal_film_f0_{0.0f};  // Schlick's f0 standing in for the film (dielectric, metal base)
+  vec3 spec_f0_, metal_f0_;  // the specular layers' Schlick f0, film mixed in
   bool coat_tilted_ = false;  // the coat has its own normal (clearcoatNormalTexture)
   Frame coat_frame_{{1.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, {0.0f, 0.0f, 1.0f}};  // local to the coat's
   vec3 straight_{0.0f};  // the thin-walled straight pass; 0 for a volume or no transmission
