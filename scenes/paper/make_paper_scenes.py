@@ -25,8 +25,11 @@ import argparse
 import json
 import math
 import os
-import struct
 import sys
+
+sys.dont_write_bytecode = True  # no __pycache__ in scenes/
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from gltf_builder import BufferBuilder  # noqa: E402  (scenes/gltf_builder.py: views, accessors)
 
 GENERATOR = "tessera scenes/paper/make_paper_scenes.py"
 SEED_FILE = os.path.join("seed", "grid_of_spheres.txt")
@@ -74,20 +77,6 @@ def length(a):
 def normalize(a):
     n = length(a)
     return (a[0] / n, a[1] / n, a[2] / n)
-
-
-def f32(v):
-    return struct.unpack("<f", struct.pack("<f", v))[0]
-
-
-def shortest_f32(v):
-    """The shortest decimal that reads back as the same float32 (for accessor min/max)."""
-    target = f32(v)
-    for digits in range(1, 18):
-        candidate = float("%.*g" % (digits, target))
-        if f32(candidate) == target:
-            return candidate + 0.0  # no negative zero
-    return target
 
 
 def clean(v, places=12):
@@ -502,8 +491,8 @@ def material_json(name, key):
 class SceneWriter:
     def __init__(self, stem, title, camera, sphere_frequency):
         self.stem, self.title, self.camera = stem, title, camera
-        self.blob = bytearray()
-        self.buffer_views, self.accessors, self.meshes, self.nodes, self.materials = [], [], [], [], []
+        self.buf = BufferBuilder()
+        self.meshes, self.nodes, self.materials = [], [], []
         self.material_index, self.mesh_index = {}, {}
         self.extensions = set()
         positions, triangles, self.sphere_deviation = icosphere(sphere_frequency)
@@ -516,31 +505,11 @@ class SceneWriter:
         self.unique_triangles = self.sphere_triangles
         self.extras = {}
 
-    def _view(self, data, target):
-        while len(self.blob) % 4:
-            self.blob.append(0)
-        self.buffer_views.append({"buffer": 0, "byteOffset": len(self.blob), "byteLength": len(data), "target": target})
-        self.blob.extend(data)
-        return len(self.buffer_views) - 1
-
     def _vec3(self, values, bounds):
-        data = b"".join(struct.pack("<3f", *v) for v in values)
-        acc = {"bufferView": self._view(data, 34962), "componentType": 5126, "count": len(values), "type": "VEC3"}
-        if bounds:
-            acc["min"] = [shortest_f32(min(f32(v[i]) for v in values)) for i in range(3)]
-            acc["max"] = [shortest_f32(max(f32(v[i]) for v in values)) for i in range(3)]
-        self.accessors.append(acc)
-        return len(self.accessors) - 1
+        return self.buf.vec3(values, bounds)
 
     def _indices(self, triangles):
-        flat = [i for t in triangles for i in t]
-        if max(flat) < 65535:
-            data, ctype = struct.pack("<%dH" % len(flat), *flat), 5123
-        else:
-            data, ctype = struct.pack("<%dI" % len(flat), *flat), 5125
-        self.accessors.append({"bufferView": self._view(data, 34963), "componentType": ctype,
-                               "count": len(flat), "type": "SCALAR"})
-        return len(self.accessors) - 1
+        return self.buf.indices(i for t in triangles for i in t)
 
     def material(self, name, key):
         if key not in self.material_index:
@@ -587,8 +556,6 @@ class SceneWriter:
         self.nodes.append({"name": "Ground", "mesh": mesh})
 
     def build(self, description):
-        while len(self.blob) % 4:
-            self.blob.append(0)
         cam = self.camera
         self.nodes.append({"name": cam.name, "camera": 0, "translation": [clean(c) for c in cam.eye],
                            "rotation": cam.quaternion()})
@@ -615,15 +582,15 @@ class SceneWriter:
                                          "znear": 0.001}}],
             "meshes": self.meshes,
             "materials": self.materials,
-            "accessors": self.accessors,
-            "bufferViews": self.buffer_views,
-            "buffers": [{"uri": bin_name, "byteLength": len(self.blob)}],
+            "accessors": self.buf.accessors,
+            "bufferViews": self.buf.buffer_views,
+            "buffers": [self.buf.external_buffer(bin_name)],
         }
         if self.extensions:
             gltf["extensionsUsed"] = sorted(self.extensions)
             gltf = {k: gltf[k] for k in ["asset", "extensionsUsed"] + [k for k in gltf if k not in ("asset", "extensionsUsed")]}
         text = json.dumps(gltf, indent=1, ensure_ascii=True) + "\n"
-        return {self.stem + ".gltf": text.encode("utf-8"), bin_name: bytes(self.blob)}
+        return {self.stem + ".gltf": text.encode("utf-8"), bin_name: self.buf.finish()}
 
 
 # --- Tessellation planning ---------------------------------------------------------------------
