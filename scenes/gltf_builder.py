@@ -108,6 +108,44 @@ def rotate(q, v):
     return add(add(v, scale(t, w)), cross(u, t))
 
 
+def look_at_quaternion(eye, target, up=(0.0, 1.0, 0.0)):
+    """The rotation [x, y, z, w] of a glTF camera node at eye looking at target (a glTF camera
+    looks down its local -Z with +Y up)."""
+    back = normalize(sub(eye, target))
+    right = normalize(cross(up, back))
+    return basis_quaternion(right, cross(back, right), back)
+
+
+def basis_quaternion(right, up, back):
+    """The rotation [x, y, z, w] whose matrix has the columns right, up, back (an orthonormal,
+    right-handed basis), w >= 0, each component rounded by clean()."""
+    m = [[right[i], up[i], back[i]] for i in range(3)]
+    trace = m[0][0] + m[1][1] + m[2][2]
+    if trace > 0.0:
+        s = 2.0 * math.sqrt(trace + 1.0)
+        q = ((m[2][1] - m[1][2]) / s, (m[0][2] - m[2][0]) / s, (m[1][0] - m[0][1]) / s, 0.25 * s)
+    elif m[0][0] > m[1][1] and m[0][0] > m[2][2]:
+        s = 2.0 * math.sqrt(1.0 + m[0][0] - m[1][1] - m[2][2])
+        q = (0.25 * s, (m[0][1] + m[1][0]) / s, (m[0][2] + m[2][0]) / s, (m[2][1] - m[1][2]) / s)
+    elif m[1][1] > m[2][2]:
+        s = 2.0 * math.sqrt(1.0 + m[1][1] - m[0][0] - m[2][2])
+        q = ((m[0][1] + m[1][0]) / s, 0.25 * s, (m[1][2] + m[2][1]) / s, (m[0][2] - m[2][0]) / s)
+    else:
+        s = 2.0 * math.sqrt(1.0 + m[2][2] - m[0][0] - m[1][1])
+        q = ((m[0][2] + m[2][0]) / s, (m[1][2] + m[2][1]) / s, 0.25 * s, (m[1][0] - m[0][1]) / s)
+    if q[3] < 0.0:
+        q = tuple(-c for c in q)
+    n = math.sqrt(sum(c * c for c in q))
+    return [clean(c / n) for c in q]
+
+
+def axis_angle_quaternion(axis, degrees):
+    """The rotation [x, y, z, w] by degrees about axis (right-handed)."""
+    a = normalize(axis)
+    h = math.radians(degrees) / 2.0
+    return [clean(c * math.sin(h)) for c in a] + [clean(math.cos(h))]
+
+
 # --- Buffers, views and accessors ----------------------------------------------------------------
 
 
@@ -175,13 +213,14 @@ class BufferBuilder:
             data, component_type = struct.pack("<%dI" % len(flat), *flat), UNSIGNED_INT
         return self.accessor(self.view(data, ELEMENT_ARRAY_BUFFER), component_type, len(flat), "SCALAR", name=name)
 
-    def mesh_data(self, mesh, name=None):
+    def mesh_data(self, mesh, name=None, uv=True):
         """The accessors of a MeshData: (attributes dict, indices accessor). POSITION gets
-        min/max; TEXCOORD_0 is written when the mesh has texture coordinates."""
+        min/max; TEXCOORD_0 is written when the mesh has texture coordinates and uv is true
+        (the validator reports texture coordinates that no texture uses)."""
         label = (lambda s: "%s %s" % (name, s)) if name else (lambda s: None)
         attributes = {"POSITION": self.vec3(mesh.positions, True, label("positions")),
                       "NORMAL": self.vec3(mesh.normals, False, label("normals"))}
-        if mesh.has_uv:
+        if mesh.has_uv and uv:
             attributes["TEXCOORD_0"] = self.vec2(mesh.uvs, False, label("texcoords"))
         return attributes, self.indices(mesh.indices, label("indices"))
 
@@ -210,7 +249,8 @@ def data_uri(data, mime="application/octet-stream"):
 
 def png_bytes(width, height, rows, channels):
     """An 8-bit PNG. rows: height rows, each a bytes-like of width * channels values (1 grey,
-    2 grey + alpha, 3 RGB, 4 RGBA), top row first. No filtering, zlib level 9: deterministic."""
+    2 grey + alpha, 3 RGB, 4 RGBA), top row first. No filtering and no compression (stored
+    deflate blocks): the bytes do not depend on the zlib library's version. For small images."""
     colour_type = {1: 0, 2: 4, 3: 2, 4: 6}[channels]
     raw = bytearray()
     for row in rows:
@@ -223,8 +263,20 @@ def png_bytes(width, height, rows, channels):
         return struct.pack(">I", len(body)) + kind + body + struct.pack(">I", zlib.crc32(kind + body) & 0xFFFFFFFF)
 
     header = struct.pack(">IIBBBBB", width, height, 8, colour_type, 0, 0, 0)
-    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", zlib.compress(bytes(raw), 9))
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", zlib_stored(bytes(raw)))
             + chunk(b"IEND", b""))
+
+
+def zlib_stored(data):
+    """A zlib stream holding data in stored (uncompressed) deflate blocks of at most 65535 bytes."""
+    out = bytearray(b"\x78\x01")
+    blocks = [data[i:i + 65535] for i in range(0, len(data), 65535)] or [b""]
+    for k, block in enumerate(blocks):
+        out.append(1 if k == len(blocks) - 1 else 0)
+        out.extend(struct.pack("<HH", len(block), len(block) ^ 0xFFFF))
+        out.extend(block)
+    out.extend(struct.pack(">I", zlib.adler32(data) & 0xFFFFFFFF))
+    return bytes(out)
 
 
 # --- Meshes --------------------------------------------------------------------------------------

@@ -29,7 +29,7 @@ import sys
 
 sys.dont_write_bytecode = True  # no __pycache__ in scenes/
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from gltf_builder import BufferBuilder  # noqa: E402  (scenes/gltf_builder.py: views, accessors)
+from gltf_builder import BufferBuilder, basis_quaternion  # noqa: E402  (scenes/gltf_builder.py)
 
 GENERATOR = "tessera scenes/paper/make_paper_scenes.py"
 SEED_FILE = os.path.join("seed", "grid_of_spheres.txt")
@@ -156,24 +156,7 @@ class Camera:
 
     def quaternion(self):
         """Rotation (x, y, z, w) whose matrix has columns right, up, back."""
-        m = [[self.right[i], self.true_up[i], self.back[i]] for i in range(3)]
-        trace = m[0][0] + m[1][1] + m[2][2]
-        if trace > 0.0:
-            s = 2.0 * math.sqrt(trace + 1.0)
-            q = ((m[2][1] - m[1][2]) / s, (m[0][2] - m[2][0]) / s, (m[1][0] - m[0][1]) / s, 0.25 * s)
-        elif m[0][0] > m[1][1] and m[0][0] > m[2][2]:
-            s = 2.0 * math.sqrt(1.0 + m[0][0] - m[1][1] - m[2][2])
-            q = (0.25 * s, (m[0][1] + m[1][0]) / s, (m[0][2] + m[2][0]) / s, (m[2][1] - m[1][2]) / s)
-        elif m[1][1] > m[2][2]:
-            s = 2.0 * math.sqrt(1.0 + m[1][1] - m[0][0] - m[2][2])
-            q = ((m[0][1] + m[1][0]) / s, 0.25 * s, (m[1][2] + m[2][1]) / s, (m[0][2] - m[2][0]) / s)
-        else:
-            s = 2.0 * math.sqrt(1.0 + m[2][2] - m[0][0] - m[1][1])
-            q = ((m[0][2] + m[2][0]) / s, (m[1][2] + m[2][1]) / s, 0.25 * s, (m[1][0] - m[0][1]) / s)
-        if q[3] < 0.0:
-            q = tuple(-c for c in q)
-        n = math.sqrt(sum(c * c for c in q))
-        return [clean(c / n) for c in q]
+        return basis_quaternion(self.right, self.true_up, self.back)
 
 
 # --- The unit sphere: a geodesic icosphere -----------------------------------------------------
