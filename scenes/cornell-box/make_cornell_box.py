@@ -26,8 +26,11 @@ import argparse
 import json
 import math
 import os
-import struct
 import sys
+
+sys.dont_write_bytecode = True  # no __pycache__ in scenes/
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from gltf_builder import BufferBuilder, cross, dot, normalize, sub  # noqa: E402  (scenes/gltf_builder.py)
 
 GLTF_NAME = "cornell-box.gltf"
 BIN_NAME = "cornell-box.bin"
@@ -83,40 +86,9 @@ def to_gltf(p):
     return ((CAMERA_POSITION[0] - x) / 1000.0 + 0.0, y / 1000.0 + 0.0, -z / 1000.0 + 0.0)  # no -0.0
 
 
-def sub(a, b):
-    return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
-
-
-def cross(a, b):
-    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
-
-
-def dot(a, b):
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-
-
-def normalize(a):
-    length = math.sqrt(dot(a, a))
-    return (a[0] / length + 0.0, a[1] / length + 0.0, a[2] / length + 0.0)  # + 0.0: no -0.0
-
-
 def centroid(points):
     n = float(len(points))
     return (sum(p[0] for p in points) / n, sum(p[1] for p in points) / n, sum(p[2] for p in points) / n)
-
-
-def f32(v):
-    return struct.unpack("<f", struct.pack("<f", v))[0]
-
-
-def shortest_f32(v):
-    """The shortest decimal that reads back as the same float32 (for accessor min/max)."""
-    target = f32(v)
-    for digits in range(1, 18):
-        candidate = float("%.*g" % (digits, target))
-        if f32(candidate) == target:
-            return candidate + 0.0  # no negative zero
-    return target
 
 
 class Mesh:
@@ -231,43 +203,22 @@ def build():
     mats = materials()
     material_index = {m["name"]: i for i, m in enumerate(mats)}
 
-    blob = bytearray()
-    buffer_views, accessors, gltf_meshes, nodes = [], [], [], []
-
-    def add_view(data, target):
-        while len(blob) % 4:
-            blob.append(0)
-        buffer_views.append({"buffer": 0, "byteOffset": len(blob), "byteLength": len(data), "target": target})
-        blob.extend(data)
-        return len(buffer_views) - 1
-
-    def add_vec3(values, with_bounds):
-        data = b"".join(struct.pack("<3f", *v) for v in values)
-        accessor = {"bufferView": add_view(data, 34962), "componentType": 5126, "count": len(values), "type": "VEC3"}
-        if with_bounds:
-            accessor["min"] = [shortest_f32(min(f32(v[i]) for v in values)) for i in range(3)]
-            accessor["max"] = [shortest_f32(max(f32(v[i]) for v in values)) for i in range(3)]
-        accessors.append(accessor)
-        return len(accessors) - 1
-
+    buf = BufferBuilder()
+    gltf_meshes, nodes = [], []
     for mesh in meshes:
-        position = add_vec3(mesh.positions, True)
-        normal = add_vec3(mesh.normals, False)
-        data = struct.pack("<%dH" % len(mesh.indices), *mesh.indices)
-        accessors.append({"bufferView": add_view(data, 34963), "componentType": 5123,
-                          "count": len(mesh.indices), "type": "SCALAR"})
+        position = buf.vec3(mesh.positions, bounds=True)
+        normal = buf.vec3(mesh.normals)
+        indices = buf.indices(mesh.indices)
         gltf_meshes.append({
             "name": mesh.name,
             "primitives": [{
                 "attributes": {"POSITION": position, "NORMAL": normal},
-                "indices": len(accessors) - 1,
+                "indices": indices,
                 "material": material_index[MATERIAL_OF[mesh.name]],
                 "mode": 4,
             }],
         })
         nodes.append({"name": mesh.name, "mesh": len(gltf_meshes) - 1})
-    while len(blob) % 4:
-        blob.append(0)
 
     camera = to_gltf(CAMERA_POSITION)
     yfov = 2.0 * math.atan(FILM_SIZE_MM / 2.0 / FOCAL_LENGTH_MM)
@@ -299,12 +250,12 @@ def build():
         }],
         "meshes": gltf_meshes,
         "materials": mats,
-        "accessors": accessors,
-        "bufferViews": buffer_views,
-        "buffers": [{"uri": BIN_NAME, "byteLength": len(blob)}],
+        "accessors": buf.accessors,
+        "bufferViews": buf.buffer_views,
+        "buffers": [buf.external_buffer(BIN_NAME)],
     }
     text = json.dumps(gltf, indent=2, ensure_ascii=True) + "\n"
-    return text.encode("utf-8"), bytes(blob)
+    return text.encode("utf-8"), buf.finish()
 
 
 def main():

@@ -19,11 +19,13 @@ Usage: python3 make_material_variants.py [--out-dir DIR] [--check]
 """
 
 import argparse
-import base64
 import json
 import os
-import struct
 import sys
+
+sys.dont_write_bytecode = True  # no __pycache__ in scenes/
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+import gltf_builder  # noqa: E402  (scenes/gltf_builder.py: buffer views, accessors, data URI)
 
 GLTF_NAME = "material-variants.gltf"
 GENERATOR = "tessera scenes/material-variants/make_material_variants.py"
@@ -46,40 +48,22 @@ QUADS = [
 def build():
     material_index = {name: i for i, (name, _) in enumerate(MATERIALS)}
     variant_index = {name: i for i, name in enumerate(VARIANTS)}
-    blob = bytearray()
-    buffer_views, accessors, primitives = [], [], []
-
-    def add_view(data, target):
-        while len(blob) % 4:
-            blob.append(0)
-        buffer_views.append({"buffer": 0, "byteOffset": len(blob), "byteLength": len(data), "target": target})
-        blob.extend(data)
-        return len(buffer_views) - 1
-
+    buf = gltf_builder.BufferBuilder()
+    primitives = []
     for name, (x0, y0, x1, y1), mapping in QUADS:
         positions = [(x0, y0, 0.0), (x1, y0, 0.0), (x1, y1, 0.0), (x0, y1, 0.0)]
-        data = b"".join(struct.pack("<3f", *p) for p in positions)
-        accessors.append({"bufferView": add_view(data, 34962), "componentType": 5126, "count": 4, "type": "VEC3",
-                          "min": [x0, y0, 0.0], "max": [x1, y1, 0.0], "name": name + " positions"})
-        position = len(accessors) - 1
-        data = struct.pack("<12f", *([0.0, 0.0, 1.0] * 4))
-        accessors.append({"bufferView": add_view(data, 34962), "componentType": 5126, "count": 4, "type": "VEC3",
-                          "name": name + " normals"})
-        normal = len(accessors) - 1
-        data = struct.pack("<6H", 0, 1, 2, 0, 2, 3)  # counter-clockwise seen from +Z
-        accessors.append({"bufferView": add_view(data, 34963), "componentType": 5123, "count": 6, "type": "SCALAR",
-                          "name": name + " indices"})
+        position = buf.vec3(positions, bounds=True, name=name + " positions")
+        normal = buf.vec3([(0.0, 0.0, 1.0)] * 4, name=name + " normals")
+        indices = buf.indices([0, 1, 2, 0, 2, 3], name=name + " indices")  # counter-clockwise seen from +Z
         mappings = [{"material": material_index[material], "variants": [variant_index[variant]]}
                     for variant, material in mapping.items()]
         primitives.append({
             "attributes": {"POSITION": position, "NORMAL": normal},
-            "indices": len(accessors) - 1,
+            "indices": indices,
             "material": material_index["white"],
             "mode": 4,
             "extensions": {"KHR_materials_variants": {"mappings": mappings}},
         })
-    while len(blob) % 4:
-        blob.append(0)
 
     gltf = {
         "asset": {"version": "2.0", "generator": GENERATOR},
@@ -99,10 +83,9 @@ def build():
             "pbrMetallicRoughness": {"baseColorFactor": [*rgb, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0},
             "extensions": {"KHR_materials_unlit": {}},
         } for name, rgb in MATERIALS],
-        "buffers": [{"byteLength": len(blob),
-                     "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(blob)).decode("ascii")}],
-        "bufferViews": buffer_views,
-        "accessors": accessors,
+        "buffers": [buf.embedded_buffer()],
+        "bufferViews": buf.buffer_views,
+        "accessors": buf.accessors,
     }
     return (json.dumps(gltf, indent=1) + "\n").encode("utf-8")
 

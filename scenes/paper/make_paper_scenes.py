@@ -25,8 +25,11 @@ import argparse
 import json
 import math
 import os
-import struct
 import sys
+
+sys.dont_write_bytecode = True  # no __pycache__ in scenes/
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from gltf_builder import BufferBuilder, basis_quaternion  # noqa: E402  (scenes/gltf_builder.py)
 
 GENERATOR = "tessera scenes/paper/make_paper_scenes.py"
 SEED_FILE = os.path.join("seed", "grid_of_spheres.txt")
@@ -74,20 +77,6 @@ def length(a):
 def normalize(a):
     n = length(a)
     return (a[0] / n, a[1] / n, a[2] / n)
-
-
-def f32(v):
-    return struct.unpack("<f", struct.pack("<f", v))[0]
-
-
-def shortest_f32(v):
-    """The shortest decimal that reads back as the same float32 (for accessor min/max)."""
-    target = f32(v)
-    for digits in range(1, 18):
-        candidate = float("%.*g" % (digits, target))
-        if f32(candidate) == target:
-            return candidate + 0.0  # no negative zero
-    return target
 
 
 def clean(v, places=12):
@@ -167,24 +156,7 @@ class Camera:
 
     def quaternion(self):
         """Rotation (x, y, z, w) whose matrix has columns right, up, back."""
-        m = [[self.right[i], self.true_up[i], self.back[i]] for i in range(3)]
-        trace = m[0][0] + m[1][1] + m[2][2]
-        if trace > 0.0:
-            s = 2.0 * math.sqrt(trace + 1.0)
-            q = ((m[2][1] - m[1][2]) / s, (m[0][2] - m[2][0]) / s, (m[1][0] - m[0][1]) / s, 0.25 * s)
-        elif m[0][0] > m[1][1] and m[0][0] > m[2][2]:
-            s = 2.0 * math.sqrt(1.0 + m[0][0] - m[1][1] - m[2][2])
-            q = (0.25 * s, (m[0][1] + m[1][0]) / s, (m[0][2] + m[2][0]) / s, (m[2][1] - m[1][2]) / s)
-        elif m[1][1] > m[2][2]:
-            s = 2.0 * math.sqrt(1.0 + m[1][1] - m[0][0] - m[2][2])
-            q = ((m[0][1] + m[1][0]) / s, 0.25 * s, (m[1][2] + m[2][1]) / s, (m[0][2] - m[2][0]) / s)
-        else:
-            s = 2.0 * math.sqrt(1.0 + m[2][2] - m[0][0] - m[1][1])
-            q = ((m[0][2] + m[2][0]) / s, (m[1][2] + m[2][1]) / s, 0.25 * s, (m[1][0] - m[0][1]) / s)
-        if q[3] < 0.0:
-            q = tuple(-c for c in q)
-        n = math.sqrt(sum(c * c for c in q))
-        return [clean(c / n) for c in q]
+        return basis_quaternion(self.right, self.true_up, self.back)
 
 
 # --- The unit sphere: a geodesic icosphere -----------------------------------------------------
@@ -502,8 +474,8 @@ def material_json(name, key):
 class SceneWriter:
     def __init__(self, stem, title, camera, sphere_frequency):
         self.stem, self.title, self.camera = stem, title, camera
-        self.blob = bytearray()
-        self.buffer_views, self.accessors, self.meshes, self.nodes, self.materials = [], [], [], [], []
+        self.buf = BufferBuilder()
+        self.meshes, self.nodes, self.materials = [], [], []
         self.material_index, self.mesh_index = {}, {}
         self.extensions = set()
         positions, triangles, self.sphere_deviation = icosphere(sphere_frequency)
@@ -516,31 +488,11 @@ class SceneWriter:
         self.unique_triangles = self.sphere_triangles
         self.extras = {}
 
-    def _view(self, data, target):
-        while len(self.blob) % 4:
-            self.blob.append(0)
-        self.buffer_views.append({"buffer": 0, "byteOffset": len(self.blob), "byteLength": len(data), "target": target})
-        self.blob.extend(data)
-        return len(self.buffer_views) - 1
-
     def _vec3(self, values, bounds):
-        data = b"".join(struct.pack("<3f", *v) for v in values)
-        acc = {"bufferView": self._view(data, 34962), "componentType": 5126, "count": len(values), "type": "VEC3"}
-        if bounds:
-            acc["min"] = [shortest_f32(min(f32(v[i]) for v in values)) for i in range(3)]
-            acc["max"] = [shortest_f32(max(f32(v[i]) for v in values)) for i in range(3)]
-        self.accessors.append(acc)
-        return len(self.accessors) - 1
+        return self.buf.vec3(values, bounds)
 
     def _indices(self, triangles):
-        flat = [i for t in triangles for i in t]
-        if max(flat) < 65535:
-            data, ctype = struct.pack("<%dH" % len(flat), *flat), 5123
-        else:
-            data, ctype = struct.pack("<%dI" % len(flat), *flat), 5125
-        self.accessors.append({"bufferView": self._view(data, 34963), "componentType": ctype,
-                               "count": len(flat), "type": "SCALAR"})
-        return len(self.accessors) - 1
+        return self.buf.indices(i for t in triangles for i in t)
 
     def material(self, name, key):
         if key not in self.material_index:
@@ -587,8 +539,6 @@ class SceneWriter:
         self.nodes.append({"name": "Ground", "mesh": mesh})
 
     def build(self, description):
-        while len(self.blob) % 4:
-            self.blob.append(0)
         cam = self.camera
         self.nodes.append({"name": cam.name, "camera": 0, "translation": [clean(c) for c in cam.eye],
                            "rotation": cam.quaternion()})
@@ -615,15 +565,15 @@ class SceneWriter:
                                          "znear": 0.001}}],
             "meshes": self.meshes,
             "materials": self.materials,
-            "accessors": self.accessors,
-            "bufferViews": self.buffer_views,
-            "buffers": [{"uri": bin_name, "byteLength": len(self.blob)}],
+            "accessors": self.buf.accessors,
+            "bufferViews": self.buf.buffer_views,
+            "buffers": [self.buf.external_buffer(bin_name)],
         }
         if self.extensions:
             gltf["extensionsUsed"] = sorted(self.extensions)
             gltf = {k: gltf[k] for k in ["asset", "extensionsUsed"] + [k for k in gltf if k not in ("asset", "extensionsUsed")]}
         text = json.dumps(gltf, indent=1, ensure_ascii=True) + "\n"
-        return {self.stem + ".gltf": text.encode("utf-8"), bin_name: bytes(self.blob)}
+        return {self.stem + ".gltf": text.encode("utf-8"), bin_name: self.buf.finish()}
 
 
 # --- Tessellation planning ---------------------------------------------------------------------
