@@ -83,5 +83,17 @@ run tessera render scenes/khronos/TextureTransformTest/glTF/TextureTransformTest
 run tessera render scenes/khronos/VertexColorTest/glTF-Binary/VertexColorTest.glb \
     --width 480 --spp 64 -o docs/images/gallery-vertex-color-test.png
 
+# --- tessera's own test scenes for the newest Khronos materials --------------------------------
+run tessera render scenes/material-extensions/iridescence.gltf --width 800 --spp 128 \
+    -o docs/images/gallery-iridescence.png
+run tessera render scenes/material-extensions/dispersion.gltf --width 800 --spp 128 \
+    -o docs/images/gallery-dispersion.png
+run tessera render scenes/material-extensions/diffuse-transmission.gltf --width 800 --spp 64 \
+    -o docs/images/gallery-diffuse-transmission.png
+for variant in none red green; do
+  run tessera render scenes/material-variants/material-variants.gltf --width 256 --spp 16 \
+      $([[ $variant == none ]] || echo --variant $variant) -o docs/images/gallery-variant-$variant.png
+done
+
 echo "make-gallery.sh: done in $((SECONDS - start)) s" >&2
 ls -l docs/images/gallery-* >&2

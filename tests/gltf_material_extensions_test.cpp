@@ -64,6 +64,36 @@ TEST(GltfMaterialExtensions, Anisotropy) {
   EXPECT_FLOAT_EQ(s.materials[3].anisotropy_rotation, 0.349065850398866f);  // 20 degrees
 }
 
+// tessera's own scenes for the newest extensions (scenes/material-extensions/).
+SceneDescription load_own(const std::string& name) {
+  return load_gltf(test::scene_path("material-extensions/" + name + ".gltf")).scene;
+}
+
+TEST(GltfMaterialExtensions, Iridescence) {
+  const SceneDescription s = load_own("iridescence");
+  const Material& plain = s.materials[2];  // "dark dielectric, film 400 nm"
+  EXPECT_EQ(plain.name, "dark dielectric, film 400 nm");
+  EXPECT_FLOAT_EQ(plain.iridescence_factor, 1.0f);
+  EXPECT_FLOAT_EQ(plain.iridescence_ior, 1.8f);
+  EXPECT_FLOAT_EQ(plain.iridescence_thickness_min, 100.0f);  // the default
+  EXPECT_FLOAT_EQ(plain.iridescence_thickness_max, 400.0f);
+  EXPECT_FALSE(plain.iridescence_thickness_texture.present());
+  const Material& ramp = s.materials[18];  // thickness from the texture's G
+  EXPECT_FLOAT_EQ(ramp.iridescence_thickness_max, 1000.0f);
+  EXPECT_TRUE(ramp.iridescence_texture.present());
+  EXPECT_TRUE(ramp.iridescence_thickness_texture.present());
+  EXPECT_FLOAT_EQ(s.materials[19].iridescence_factor, 0.0f);  // the floor: none
+}
+
+TEST(GltfMaterialExtensions, Dispersion) {
+  const SceneDescription s = load_own("dispersion");
+  EXPECT_FLOAT_EQ(s.materials[0].dispersion, 0.0f);
+  EXPECT_FLOAT_EQ(s.materials[1].dispersion, 1.0f);
+  EXPECT_FLOAT_EQ(s.materials[2].dispersion, 3.0f);
+  EXPECT_FLOAT_EQ(s.materials[2].ior, 1.7f);
+  EXPECT_GT(s.materials[2].thickness_factor, 0.0f);  // a volume: dispersion needs one
+}
+
 TEST(GltfMaterialExtensions, RenderedExtensionsAreSupported) {
   for (const char* name : {"KHR_materials_transmission", "KHR_materials_ior", "KHR_materials_volume",
                            "KHR_materials_specular", "KHR_materials_clearcoat", "KHR_materials_sheen",
