@@ -9,8 +9,8 @@
 # --spp (the README's 1200 x 675 at 500 spp takes hours on 2 cores). Needs oiiotool (Debian
 # 12: openimageio-tools) for the gamma-2 conversion and the difference image. Renders run one
 # after the other, each on all cores; the time of each is printed. Intermediate EXRs go to a
-# temporary directory that is deleted at the end. About 6 to 8 minutes on 2 shared cores
-# (379 s measured).
+# temporary directory that is deleted at the end. About 9 minutes on 2 shared cores
+# (379 s measured before the material scenes, which took 150 s).
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 bin=${TESSERA:-$root/build/tessera}
