@@ -25,6 +25,10 @@ struct RenderOptions {
   float filter_width = 0.0f;  // 0: the filter's default
   std::string camera, scene;
   std::string variant;  // KHR_materials_variants: by name or index; empty: the default materials
+  std::string animation;  // which animations play: name, index, "all" (empty: all) or "none"
+  double time = 0.0;  // seconds: the scene's pose (--time)
+  int frame = -1;  // --frame: time = frame / fps (-1: use --time)
+  double fps = 24.0;
   float aperture = 0.0f, focus_distance = 0.0f, fov = 0.0f;
   std::string background = "auto";
   std::string envmap;
@@ -46,6 +50,7 @@ struct RenderOptions {
 struct InfoOptions {
   std::string scene_path;
   std::string scene;
+  double fps = 24.0;  // for the animations' frame range
 };
 
 struct BenchOptions {

@@ -81,9 +81,13 @@ std::string frame_output_path(const RenderOptions& o) {
   return std::filesystem::path(o.scene_path).stem().string() + ".exr";
 }
 
+float scene_time(const RenderOptions& o) {
+  return static_cast<float>(o.frame >= 0 ? o.frame / o.fps : o.time);
+}
+
 LoadedScene load_scene(const RenderOptions& o) {
   const auto start = std::chrono::steady_clock::now();
-  LoadedScene loaded{load_gltf(o.scene_path, {o.scene, o.variant})};
+  LoadedScene loaded{load_gltf(o.scene_path, {o.scene, o.variant, o.animation, scene_time(o)})};
   for (const std::string& w : loaded.gltf.warnings) fmt::print(stderr, "tessera: warning: {}: {}\n", o.scene_path, w);
   for (const Mesh& m : loaded.gltf.scene.meshes)
     for (const TriangleMesh& p : m.primitives) loaded.triangles += p.triangle_count();
@@ -98,6 +102,7 @@ FramePlan plan_frame(const RenderOptions& o, const GltfLoadResult& loaded) {
     plan.material_variant = loaded.material_variant;
     plan.material_variant_name = loaded.material_variants[loaded.material_variant];
   }
+  plan.animated = !loaded.playing.empty();
   plan.output = frame_output_path(o);
   plan.preview = o.preview;
   plan_image(o, scene, plan);
@@ -153,6 +158,12 @@ ImageWriteParams frame_write_params(const RenderOptions& o, const FramePlan& pla
   meta.scene_path = o.scene_path;
   meta.camera_name = plan.camera.name;
   meta.material_variant = plan.material_variant_name;
+  meta.animated = plan.animated;
+  meta.scene_time = scene_time(o);
+  if (o.frame >= 0) {
+    meta.frame = o.frame;
+    meta.frames_per_second = static_cast<float>(o.fps);
+  }
   meta.partial = partial;
   meta.target_spp = settings.spp;
   if (settings.adaptive.on()) {

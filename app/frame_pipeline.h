@@ -16,6 +16,9 @@
 
 namespace tessera {
 
+// The scene time the options ask for: --frame / --fps, else --time.
+float scene_time(const RenderOptions& o);
+
 // Where -o goes: the option, else the resumed file, else SCENE_NAME.exr in the current directory.
 std::string frame_output_path(const RenderOptions& o);
 
@@ -40,6 +43,7 @@ struct FramePlan {
   // --variant: the KHR_materials_variants variant the loader applied (index -1, name empty: none).
   int material_variant = -1;
   std::string material_variant_name;
+  bool animated = false;  // some animation posed the scene (at scene_time(o))
 };
 FramePlan plan_frame(const RenderOptions& o, const GltfLoadResult& loaded);
 

@@ -1,4 +1,7 @@
 // tessera info: what a glTF file holds, and what of it tessera supports.
+#include <algorithm>
+#include <cmath>
+
 #include <fmt/format.h>
 
 #include "app/commands.h"
@@ -13,6 +16,8 @@ void add_info_command(CLI::App& app, InfoOptions& o) {
                                              "textures, cameras, lights, bounds and extensions.");
   cmd->add_option("scene", o.scene_path, "The glTF file")->required();
   cmd->add_option("--scene", o.scene, "glTF scene by index or name [default: the file's default scene, else 0]");
+  cmd->add_option("--fps", o.fps, "Frames per second for the animations' frame range")
+      ->check(CLI::Range(1e-3, 1e6))->capture_default_str();
 }
 
 namespace {
@@ -24,6 +29,29 @@ std::string extension_list(const std::vector<std::string>& names) {
     out += fmt::format("{}{} ({})", out.empty() ? "" : ", ", n,
                        is_supported_gltf_extension(n) ? "supported" : "not supported");
   return out;
+}
+
+// Each animation: its channels, key range and the frames that cover it at `fps` (render
+// --frame N shows time N / fps; all animations play together by default).
+void print_animations(const std::vector<Animation>& animations, double fps) {
+  if (animations.empty()) return;
+  float start = animations[0].start, end = animations[0].end;
+  for (const Animation& a : animations) start = std::min(start, a.start), end = std::max(end, a.end);
+  fmt::print("animations  {} (render --animation NAME or INDEX, --time S or --frame N), frames {}..{} at {:g} fps\n",
+             animations.size(), static_cast<long long>(std::floor(start * fps)),
+             static_cast<long long>(std::ceil(end * fps)), fps);
+  static const char* kPaths[] = {"translation", "rotation", "scale", "weights"};
+  for (std::size_t i = 0; i < animations.size(); ++i) {
+    const Animation& a = animations[i];
+    std::string paths;
+    for (const char* p : kPaths) {
+      int n = 0;
+      for (const AnimationChannel& c : a.channels) n += std::string(kPaths[static_cast<int>(c.path)]) == p;
+      if (n > 0) paths += fmt::format("{}{} {}", paths.empty() ? "" : ", ", n, p);
+    }
+    fmt::print("  {}: '{}' {} channel{} ({}), {:.4g}..{:.4g} s\n", i, a.name, a.channels.size(),
+               a.channels.size() == 1 ? "" : "s", paths.empty() ? "none" : paths, a.start, a.end);
+  }
 }
 
 }  // namespace
@@ -52,6 +80,7 @@ int run_info(const InfoOptions& o) {
     for (std::size_t i = 0; i < loaded.material_variants.size(); ++i)
       fmt::print("  {}: '{}'\n", i, loaded.material_variants[i]);
   }
+  print_animations(loaded.animations, o.fps);
   fmt::print("textures    {} images\n", textured);
   fmt::print("cameras     {}\n", s.cameras.size());
   for (std::size_t i = 0; i < s.cameras.size(); ++i) {

@@ -68,6 +68,13 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
   cmd->add_option("--variant", o.variant,
                   "Material variant (KHR_materials_variants) by name or index: each primitive that maps it "
                   "gets its mapped material, the others keep theirs [default: the file's default materials]");
+  cmd->add_option("--animation", o.animation,
+                  "Which glTF animations play: a name, an index, all, or none [default: all, together, as viewers play them]");
+  auto* time = cmd->add_option("--time", o.time, "Scene time in seconds at which animated nodes are posed [default: 0]")
+                   ->check(CLI::Range(-1e7, 1e7));
+  cmd->add_option("--frame", o.frame, "Frame number: the scene time is FRAME / --fps")
+      ->check(CLI::Range(0, 100000000))->excludes(time);
+  cmd->add_option("--fps", o.fps, "Frames per second for --frame")->check(CLI::Range(1e-3, 1e6))->capture_default_str();
   cmd->add_option("--aperture", o.aperture, "Thin-lens aperture diameter in scene units (0: pinhole)")
       ->check(CLI::Range(0.0f, 1e6f))->capture_default_str();
   cmd->add_option("--focus-distance", o.focus_distance,

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "app/exit_codes.h"
+#include "app/frame_pipeline.h"
 #include "renderer/resume_layers.h"
 
 namespace tessera {
@@ -74,6 +75,9 @@ std::string resume_settings(const RenderOptions& o, const RenderSettings& s, con
   // Only with --variant (frames before it had the default materials): the index decides, the
   // name is for the message.
   if (variant >= 0) text += fmt::format("variant={} '{}'\n", variant, variant_name);
+  // The pose: only when it differs from what frames had before animations (all at time 0).
+  if (!o.animation.empty() && o.animation != "all") text += fmt::format("animation={}\n", o.animation);
+  if (scene_time(o) != 0.0f) text += fmt::format("time={}\n", scene_time(o));
   // Only with adaptive sampling, so frames from before it still resume; the check below
   // compares both ways, so neither side can drop these lines unnoticed.
   if (s.adaptive.on())
@@ -85,7 +89,7 @@ namespace {
 
 // A line is left out when its setting is what frames had before the line existed.
 const std::pair<const char*, const char*> kUnwrittenDefaults[] = {
-    {"pixel-filter", "box 1"}, {"light-sampling", "mis"}, {"clamp", "0"}};
+    {"pixel-filter", "box 1"}, {"light-sampling", "mis"}, {"clamp", "0"}, {"animation", "all"}, {"time", "0"}};
 
 std::string value_of(const std::vector<std::pair<std::string, std::string>>& lines, const std::string& key) {
   for (const auto& [k, v] : lines)

@@ -129,6 +129,11 @@ void write_exr(const std::string& path, const FrameImage& img, const ImageWriteP
   if (!m.scene_path.empty()) header.insert("scene", Imf::StringAttribute(m.scene_path));
   if (!m.camera_name.empty()) header.insert("camera", Imf::StringAttribute(m.camera_name));
   if (!m.material_variant.empty()) header.insert("materialVariant", Imf::StringAttribute(m.material_variant));
+  if (m.animated) header.insert("sceneTime", Imf::FloatAttribute(m.scene_time));
+  if (m.frame >= 0) {
+    header.insert("frame", Imf::IntAttribute(m.frame));
+    header.insert("framesPerSecond", Imf::FloatAttribute(m.frames_per_second));
+  }
   if (!params.header_from.empty()) copy_attributes(params.header_from, header);
 
   const Imf::PixelType type = params.half ? Imf::HALF : Imf::FLOAT;

@@ -37,6 +37,10 @@ struct FrameMetadata {
   glm::mat4 world_to_camera{1.0f}, world_to_ndc{1.0f};
   std::string scene_path, camera_name;
   std::string material_variant;  // the scene's material variant rendered (empty: none, not written)
+  bool animated = false;  // animations posed the scene: sceneTime written
+  float scene_time = 0.0f;  // seconds
+  int frame = -1;  // --frame (-1: not given, not written), with frames_per_second
+  float frames_per_second = 0.0f;
   bool partial = false;  // stopped early: samplesPerPixel tells how far it got
   int target_spp = 0;  // --spp: what a finished render reaches (0: not written)
   float noise_threshold = 0.0f;  // adaptive sampling (0: off, not written)

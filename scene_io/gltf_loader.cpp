@@ -80,11 +80,24 @@ class Converter {
       result_.material_variant = choose_material_variant(result_.material_variants, params.variant, file_);
     out_.images = convert_images(model_, file_);
     const std::vector<int> parent = check_node_hierarchy(model_, file_);
+    result_.animations = read_animations(model_, reader_, file_);
+    result_.playing = choose_animations(result_.animations, params.animation, file_);
+    poses_ = pose_nodes(result_.animations, result_.playing, params.time, model_.nodes.size());
+    warn_unrendered_weights();
     traverse(scene_roots(model_, choose_scene(params.scene), parent, file_));
   }
 
  private:
   [[noreturn]] void fail(const std::string& problem) const { throw SceneLoadError(file_, problem); }
+
+  void warn_unrendered_weights() {
+    for (int a : result_.playing)
+      for (const AnimationChannel& c : result_.animations[a].channels)
+        if (c.path == AnimationPath::Weights) {
+          warnings_.push_back("animates morph target weights, which tessera does not render yet (the base shape is used)");
+          return;
+        }
+  }
 
   void check_extensions() {
     out_.extensions_used = model_.extensionsUsed;
@@ -166,7 +179,14 @@ class Converter {
     glm::dquat r(1.0, 0.0, 0.0, 0.0);
     if (!node.translation.empty()) t = glm::make_vec3(node.translation.data());
     if (!node.scale.empty()) s = glm::make_vec3(node.scale.data());
-    if (!node.rotation.empty()) {  // glTF stores x, y, z, w
+    const NodePose& pose = poses_[index];  // what the playing animations drive
+    if (pose.translated) t = glm::dvec3(pose.translation);
+    if (pose.scaled) s = glm::dvec3(pose.scale);
+    if (pose.rotated) {
+      r = glm::dquat(pose.rotation);
+      if (!(glm::length(r) > 1e-6)) fail(fmt::format("node {} is animated to a rotation of length 0", index));
+      r = glm::normalize(r);
+    } else if (!node.rotation.empty()) {  // glTF stores x, y, z, w
       r = glm::dquat(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);
       if (!(glm::length(r) > 1e-6))
         fail(fmt::format("node {} has a rotation quaternion of length {}; it must be a unit quaternion",
@@ -298,6 +318,7 @@ class Converter {
   std::vector<std::string>& warnings_;
   AccessorReader reader_;
   std::map<int, int> mesh_slot_;  // glTF mesh index -> index in out_.meshes
+  std::vector<NodePose> poses_;  // per node, at the requested time
 };
 
 std::string directory_of(const std::string& path) {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "renderer/scene/scene.h"
+#include "scene_io/gltf_animation.h"
 
 namespace tessera {
 
@@ -16,6 +17,10 @@ struct GltfLoadParams {
   // primitives get; empty = every primitive's default material. (The {} keeps GltfLoadParams{scene}
   // free of -Wmissing-field-initializers.)
   std::string variant{};
+  // Animations: which play ("" or "all": every one, "none", a name or an index), and the time
+  // in seconds at which the nodes are posed.
+  std::string animation{};
+  float time = 0.0f;
 };
 
 struct GltfLoadResult {
@@ -23,6 +28,8 @@ struct GltfLoadResult {
   std::vector<std::string> warnings;  // each once, already prefixed with nothing
   std::vector<std::string> material_variants;  // KHR_materials_variants: the names, by index
   int material_variant = -1;  // the variant applied (GltfLoadParams::variant); -1: none
+  std::vector<Animation> animations;  // every animation of the file
+  std::vector<int> playing;  // the indices of those applied (GltfLoadParams::animation)
 };
 
 GltfLoadResult load_gltf(const std::string& path, const GltfLoadParams& params = {});

@@ -84,12 +84,15 @@ const Sample kSamples[] = {
     {"AnisotropyStrengthTest/glTF-Binary/AnisotropyStrengthTest.glb", 97240, 97240, 50, 50, 0, {-4.170141, -0.9872717, -0.4}, {3.4, 6.4, 0.4}},
     {"AttenuationTest/glTF-Binary/AttenuationTest.glb", 232, 292, 18, 23, 0, {-10, -10, -2}, {10, 10, 2}},
     {"Box/glTF-Binary/Box.glb", 12, 12, 1, 1, 0, {-0.5, -0.5, -0.5}, {0.5, 0.5, 0.5}},
+    // Posed at time 0 by their animations (all play by default).
+    {"BoxAnimated/glTF-Binary/BoxAnimated.glb", 254, 254, 2, 2, 0, {-0.5, -0.5, -0.5}, {0.5, 0.5, 0.5}},
     {"BoxTextured/glTF-Binary/BoxTextured.glb", 12, 12, 1, 1, 0, {-0.5, -0.5, -0.5}, {0.5, 0.5, 0.5}},
     {"Cameras/glTF/Cameras.gltf", 2, 2, 1, 1, 2, {0, 0, -0.7075903}, {1, 0.7066229, 0}},
     {"ClearCoatTest/glTF-Binary/ClearCoatTest.glb", 37116, 37116, 27, 27, 0, {-7.357803, -6.25, -0.06000001}, {3.1, 6.854517, 1.05}},
     {"CornellBox/glTF/cornellBox.gltf", 16720, 16732, 9, 10, 1, {-5.05, -5.05, -5.05}, {5.05, 5.05, 5}},
     {"DamagedHelmet/glTF-Binary/DamagedHelmet.glb", 15452, 15452, 1, 1, 0, {-0.9474586, -0.9009739, -1.187155}, {0.9424954, 0.900995, 0.8128451}},
     {"EmissiveStrengthTest/glTF-Binary/EmissiveStrengthTest.glb", 90, 90, 6, 6, 0, {-8.002613, -6.001067, -2}, {8.001114, 4.009398, 1.998933}},
+    {"InterpolationTest/glTF-Binary/InterpolationTest.glb", 110, 110, 10, 10, 0, {-4.311399, -2.159462, -1}, {4.340119, 7.665226, 1.008945}},
     {"MeshPrimitiveModes/glTF/MeshPrimitiveModes.gltf", 16, 16, 3, 3, 0, {-2.866, -4, 0}, {2.866, -2, 0}},
     {"MetalRoughSpheresNoTextures/glTF-Binary/MetalRoughSpheresNoTextures.glb", 1040409, 1040409, 102, 102, 0, {-0.0009243164, -0.001010498, -0.003349959}, {0.006476563, 0.006494141, 0.0003499593}},
     // README counts both meshes (1 + 2); the default scene (1) places only the square.

@@ -1,0 +1,173 @@
+// glTF animations (scene_io/gltf_animation.*): the specification's interpolation formulas
+// computed by hand on small channels, and the loader posing InterpolationTest's nodes.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include <glm/gtc/quaternion.hpp>
+
+#include <OpenEXR/ImfFloatAttribute.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfIntAttribute.h>
+
+#include "renderer/image_input.h"
+#include "scene_io/gltf_animation.h"
+#include "scene_io/gltf_loader.h"
+#include "scene_io/load_error.h"
+#include "tests/test_support.h"
+
+namespace tessera {
+namespace {
+
+AnimationChannel channel(AnimationPath path, Interpolation mode, std::vector<float> times, std::vector<float> values) {
+  AnimationChannel c;
+  c.node = 0;
+  c.path = path;
+  c.interpolation = mode;
+  c.times = std::move(times);
+  c.values = std::move(values);
+  c.width = path == AnimationPath::Rotation ? 4 : 3;
+  return c;
+}
+
+TEST(GltfAnimation, StepHoldsThePreviousKey) {
+  const AnimationChannel c = channel(AnimationPath::Translation, Interpolation::Step, {1, 2, 4}, {0, 0, 0, 1, 2, 3, 5, 5, 5});
+  EXPECT_EQ(sample_channel(c, 1.99f), std::vector<float>({0, 0, 0}));
+  EXPECT_EQ(sample_channel(c, 2.0f), std::vector<float>({1, 2, 3}));
+  EXPECT_EQ(sample_channel(c, 3.9f), std::vector<float>({1, 2, 3}));
+  EXPECT_EQ(sample_channel(c, 0.0f), std::vector<float>({0, 0, 0}));  // before the first key: the first
+  EXPECT_EQ(sample_channel(c, 9.0f), std::vector<float>({5, 5, 5}));  // after the last: the last
+}
+
+TEST(GltfAnimation, LinearInterpolatesBetweenKeys) {
+  const AnimationChannel c = channel(AnimationPath::Scale, Interpolation::Linear, {0, 2}, {1, 1, 1, 3, 5, -1});
+  const std::vector<float> v = sample_channel(c, 0.5f);  // u = 1/4
+  EXPECT_FLOAT_EQ(v[0], 1.5f);
+  EXPECT_FLOAT_EQ(v[1], 2.0f);
+  EXPECT_FLOAT_EQ(v[2], 0.5f);
+}
+
+// Rotations: spherical linear interpolation, the shorter way. From identity to 90 degrees
+// about z, a quarter of the way is 22.5 degrees (a lerp of the quaternions would give 22.2).
+TEST(GltfAnimation, LinearRotationIsSlerpTheShortWay) {
+  const float h = std::sqrt(0.5f);  // (x, y, z, w) of 90 degrees about z: (0, 0, h, h)
+  AnimationChannel c = channel(AnimationPath::Rotation, Interpolation::Linear, {0, 1}, {0, 0, 0, 1, 0, 0, h, h});
+  std::vector<float> q = sample_channel(c, 0.25f);
+  EXPECT_NEAR(q[2], std::sin(glm::radians(22.5f) / 2), 1e-6f);
+  EXPECT_NEAR(q[3], std::cos(glm::radians(22.5f) / 2), 1e-6f);
+  // The same rotation stored as -q: still the 90-degree arc, not the 270-degree one.
+  c.values = {0, 0, 0, 1, 0, 0, -h, -h};
+  q = sample_channel(c, 0.25f);
+  const float angle = 2.0f * std::acos(std::fabs(q[3]));
+  EXPECT_NEAR(glm::degrees(angle), 22.5f, 1e-3f);
+}
+
+// CUBICSPLINE (Appendix C): p(t) = (2u^3 - 3u^2 + 1) v0 + td (u^3 - 2u^2 + u) b0 + (-2u^3 + 3u^2) v1
+// + td (u^3 - u^2) a1, with b0 the first key's out-tangent and a1 the second's in-tangent.
+TEST(GltfAnimation, CubicSplineIsTheSpecificationsHermite) {
+  // keys at 1 and 3 (td = 2): in-tangent, value, out-tangent per key, 3 floats each.
+  const AnimationChannel c =
+      channel(AnimationPath::Translation, Interpolation::CubicSpline, {1, 3},
+              {9, 9, 9, /*v0*/ 0, 1, 2, /*b0*/ 1, 0, -1, /*a1*/ 2, 2, 2, /*v1*/ 4, 1, 0, 9, 9, 9});
+  const float u = 0.5f, td = 2.0f;  // time 2
+  const float h00 = 2 * u * u * u - 3 * u * u + 1, h10 = u * u * u - 2 * u * u + u, h01 = -2 * u * u * u + 3 * u * u,
+              h11 = u * u * u - u * u;
+  const float v0[3] = {0, 1, 2}, b0[3] = {1, 0, -1}, a1[3] = {2, 2, 2}, v1[3] = {4, 1, 0};
+  const std::vector<float> v = sample_channel(c, 2.0f);
+  for (int i = 0; i < 3; ++i) EXPECT_FLOAT_EQ(v[i], h00 * v0[i] + h10 * td * b0[i] + h01 * v1[i] + h11 * td * a1[i]);
+  EXPECT_EQ(sample_channel(c, 1.0f), std::vector<float>({0, 1, 2}));  // the keys' values, not the tangents
+  EXPECT_EQ(sample_channel(c, 3.0f), std::vector<float>({4, 1, 0}));
+}
+
+GltfLoadResult load_interpolation_test(float time, const std::string& animation = "") {
+  GltfLoadParams p;
+  p.animation = animation;
+  p.time = time;
+  return load_gltf(test::scene_path("khronos/InterpolationTest/glTF-Binary/InterpolationTest.glb"), p);
+}
+
+const Instance& instance_named(const SceneDescription& s, const std::string& name) {
+  for (const Instance& i : s.instances)
+    if (i.node_name == name) return i;
+  throw std::runtime_error("no instance " + name);
+}
+
+// InterpolationTest: "Linear Translation" moves node Cube.009 (a root, so its world transform
+// is its local one) between its keys; at a key it sits exactly at the key's value, and between
+// two keys at their linear mix, read from the file's own keys.
+TEST(GltfAnimation, InterpolationTestNodesArePlacedByTheirKeys) {
+  const GltfLoadResult at0 = load_interpolation_test(0.0f);
+  ASSERT_EQ(at0.animations.size(), 9u);
+  const Animation* linear = nullptr;
+  for (const Animation& a : at0.animations)
+    if (a.name == "Linear Translation") linear = &a;
+  ASSERT_NE(linear, nullptr);
+  const AnimationChannel& c = linear->channels.at(0);
+  ASSERT_GE(c.times.size(), 3u);
+  const float t1 = c.times[1], t2 = c.times[2], mid = 0.3f * t1 + 0.7f * t2;
+  const std::string node = "Cube.009";
+  const glm::vec3 at_key = glm::vec3(instance_named(load_interpolation_test(t1).scene, node).object_to_world[3]);
+  for (int i = 0; i < 3; ++i) EXPECT_FLOAT_EQ(at_key[i], c.values[3 + i]);
+  const glm::vec3 between = glm::vec3(instance_named(load_interpolation_test(mid).scene, node).object_to_world[3]);
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(between[i], 0.3f * c.values[3 + i] + 0.7f * c.values[6 + i], 1e-5f);
+  // --animation none: the file's rest pose, whatever the time.
+  const GltfLoadResult rest = load_interpolation_test(mid, "none");
+  EXPECT_TRUE(rest.playing.empty());
+  const glm::vec3 stored = glm::vec3(instance_named(rest.scene, node).object_to_world[3]);
+  EXPECT_NEAR(stored.x, -3.2975807f, 1e-6f);  // the node's own translation in the file
+  // Only "Step Translation": Cube.009 keeps its rest pose, Cube.008 moves.
+  const GltfLoadResult step = load_interpolation_test(mid, "Step Translation");
+  ASSERT_EQ(step.playing.size(), 1u);
+  EXPECT_NEAR(instance_named(step.scene, node).object_to_world[3].x, -3.2975807f, 1e-6f);
+}
+
+TEST(GltfAnimation, AnUnknownAnimationIsRefusedListingTheFilesOnes) {
+  try {
+    load_interpolation_test(0.0f, "Bounce");
+    ADD_FAILURE() << "loaded";
+  } catch (const SceneLoadError& e) {
+    EXPECT_NE(e.problem().find("has no animation 'Bounce' (it has 9 animations: 0 'Step Scale', 1 'Linear Scale'"),
+              std::string::npos)
+        << e.problem();
+  }
+  EXPECT_EQ(load_interpolation_test(0.0f, "4").playing, std::vector<int>({4}));
+}
+
+}  // namespace
+}  // namespace tessera
+
+// ---- the command line ----------------------------------------------------------------------
+
+namespace tessera {
+namespace {
+
+test::CommandResult tessera_cli(const std::string& args) {
+  return test::run_command("timeout 120 '" + test::tessera_exe() + "' " + args);
+}
+
+// --frame 12 at --fps 24 is time 0.5: the same image as --time 0.5, and the header says so.
+TEST(GltfAnimationCli, FrameIsTimeTimesFpsAndTheHeaderRecordsIt) {
+  const std::string dir = test::make_temp_dir("animation-cli");
+  const std::string scene = "'" + test::scene_path("khronos/BoxAnimated/glTF-Binary/BoxAnimated.glb") + "'";
+  const std::string common = " --width 32 --spp 2 -q --threads 1";
+  ASSERT_EQ(tessera_cli("render " + scene + common + " --frame 12 -o " + dir + "/f12.exr").exit_code, 0);
+  ASSERT_EQ(tessera_cli("render " + scene + common + " --time 0.5 -o " + dir + "/t05.exr").exit_code, 0);
+  ASSERT_EQ(tessera_cli("render " + scene + common + " -o " + dir + "/t0.exr").exit_code, 0);
+  const FrameImage f12 = read_frame_exr(dir + "/f12.exr"), t05 = read_frame_exr(dir + "/t05.exr"), t0 = read_frame_exr(dir + "/t0.exr");
+  EXPECT_EQ(f12.rgb, t05.rgb);
+  EXPECT_NE(f12.rgb, t0.rgb);  // the box has moved
+  Imf::InputFile file((dir + "/f12.exr").c_str());
+  const auto* time = file.header().findTypedAttribute<Imf::FloatAttribute>("sceneTime");
+  const auto* frame = file.header().findTypedAttribute<Imf::IntAttribute>("frame");
+  ASSERT_NE(time, nullptr);
+  ASSERT_NE(frame, nullptr);
+  EXPECT_FLOAT_EQ(time->value(), 0.5f);
+  EXPECT_EQ(frame->value(), 12);
+  const auto both = tessera_cli("render " + scene + common + " --frame 1 --time 2 -o " + dir + "/x.exr");
+  EXPECT_EQ(both.exit_code, 2);  // bad usage
+  EXPECT_NE(both.err.find("excludes"), std::string::npos) << both.err;
+}
+
+}  // namespace
+}  // namespace tessera
