@@ -81,6 +81,8 @@ int run_info(const InfoOptions& o) {
       fmt::print("  {}: '{}'\n", i, loaded.material_variants[i]);
   }
   print_animations(loaded.animations, o.fps);
+  if (loaded.morph_meshes > 0) fmt::print("morphs      {} meshes with morph targets\n", loaded.morph_meshes);
+  if (loaded.skins > 0) fmt::print("skins       {} (not applied yet: bind pose)\n", loaded.skins);
   fmt::print("textures    {} images\n", textured);
   fmt::print("cameras     {}\n", s.cameras.size());
   for (std::size_t i = 0; i < s.cameras.size(); ++i) {

@@ -182,7 +182,7 @@ std::vector<NodePose> pose_nodes(const std::vector<Animation>& animations, const
         case AnimationPath::Translation: p.translated = true, p.translation = {v[0], v[1], v[2]}; break;
         case AnimationPath::Rotation: p.rotated = true, p.rotation = to_quat(v.data()); break;
         case AnimationPath::Scale: p.scaled = true, p.scale = {v[0], v[1], v[2]}; break;
-        case AnimationPath::Weights: break;  // morph targets: not rendered yet (the loader warns)
+        case AnimationPath::Weights: p.weights = v; break;
       }
     }
   return poses;

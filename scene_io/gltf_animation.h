@@ -53,6 +53,7 @@ struct NodePose {
   bool translated = false, rotated = false, scaled = false;
   glm::vec3 translation{0.0f}, scale{1.0f};
   glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};
+  std::vector<float> weights;  // morph target weights; empty: not animated
 };
 
 // The poses of `node_count` nodes at `time` seconds under the chosen animations (later

@@ -83,20 +83,30 @@ class Converter {
     result_.animations = read_animations(model_, reader_, file_);
     result_.playing = choose_animations(result_.animations, params.animation, file_);
     poses_ = pose_nodes(result_.animations, result_.playing, params.time, model_.nodes.size());
-    warn_unrendered_weights();
+    for (const tinygltf::Mesh& m : model_.meshes)
+      result_.morph_meshes += std::any_of(m.primitives.begin(), m.primitives.end(),
+                                          [](const tinygltf::Primitive& p) { return !p.targets.empty(); });
+    result_.skins = model_.skins.size();
+    if (result_.skins > 0) warnings_.push_back("skins are not applied yet: skinned meshes render in their bind pose");
     traverse(scene_roots(model_, choose_scene(params.scene), parent, file_));
   }
 
  private:
   [[noreturn]] void fail(const std::string& problem) const { throw SceneLoadError(file_, problem); }
 
-  void warn_unrendered_weights() {
-    for (int a : result_.playing)
-      for (const AnimationChannel& c : result_.animations[a].channels)
-        if (c.path == AnimationPath::Weights) {
-          warnings_.push_back("animates morph target weights, which tessera does not render yet (the base shape is used)");
-          return;
-        }
+  // The morph weights node `index` gives its mesh: animated, else the node's, else the mesh's,
+  // else zero. Empty when the mesh has no targets or every weight is 0 (the base shape).
+  std::vector<float> morph_weights(const tinygltf::Node& node, int index) const {
+    const tinygltf::Mesh& mesh = model_.meshes[node.mesh];
+    std::size_t targets = 0;
+    for (const tinygltf::Primitive& p : mesh.primitives) targets = std::max(targets, p.targets.size());
+    if (targets == 0) return {};
+    std::vector<float> w(targets, 0.0f);
+    if (!poses_[index].weights.empty()) w = poses_[index].weights;
+    else if (!node.weights.empty()) w.assign(node.weights.begin(), node.weights.end());
+    else if (!mesh.weights.empty()) w.assign(mesh.weights.begin(), mesh.weights.end());
+    if (!fits_float(w)) fail(fmt::format("node {} has morph weights beyond the range of 32-bit floats", index));
+    return std::all_of(w.begin(), w.end(), [](float x) { return x == 0.0f; }) ? std::vector<float>{} : w;
   }
 
   void check_extensions() {
@@ -208,10 +218,12 @@ class Converter {
     if (node.mesh >= static_cast<int>(model_.meshes.size()))
       fail(fmt::format("node {} refers to mesh {}, but the file has {}", index, node.mesh,
                        count_of(model_.meshes.size(), "mesh")));
-    // A mesh with no triangles (only points or lines) is neither stored nor placed.
-    auto [it, inserted] = mesh_slot_.try_emplace(node.mesh, -1);
+    // A mesh with no triangles (only points or lines) is neither stored nor placed. A morphed
+    // mesh is the node's own (another node may weigh its targets differently).
+    const std::vector<float> weights = morph_weights(node, index);
+    auto [it, inserted] = mesh_slot_.try_emplace(weights.empty() ? node.mesh : -1 - index, -1);
     if (inserted) {
-      Mesh mesh = convert_mesh(node.mesh);
+      Mesh mesh = convert_mesh(node.mesh, weights);
       if (!mesh.primitives.empty()) {
         it->second = static_cast<int>(out_.meshes.size());
         out_.meshes.push_back(std::move(mesh));
@@ -227,7 +239,7 @@ class Converter {
     out_.bounds.extend(placed);
   }
 
-  Mesh convert_mesh(int index) {
+  Mesh convert_mesh(int index, const std::vector<float>& weights) {
     const tinygltf::Mesh& src = model_.meshes[index];
     Mesh mesh;
     mesh.name = src.name.empty() ? fmt::format("mesh {}", index) : src.name;
@@ -235,6 +247,7 @@ class Converter {
       const std::string what = fmt::format("mesh {} primitive {}", index, p);
       auto prim = convert_primitive(reader_, src.primitives[p], what, warnings_);
       if (!prim) continue;
+      if (!weights.empty()) apply_morph_targets(reader_, src.primitives[p], weights, what, *prim);
       prim->material = material_for_variant(src.primitives[p], result_.material_variant,
                                             result_.material_variants.size(), out_.materials.size(), file_, what);
       if (prim->material >= static_cast<int>(out_.materials.size()))
@@ -317,7 +330,7 @@ class Converter {
   SceneDescription& out_;
   std::vector<std::string>& warnings_;
   AccessorReader reader_;
-  std::map<int, int> mesh_slot_;  // glTF mesh index -> index in out_.meshes
+  std::map<int, int> mesh_slot_;  // glTF mesh index (-1 - node for a morphed one) -> index in out_.meshes
   std::vector<NodePose> poses_;  // per node, at the requested time
 };
 

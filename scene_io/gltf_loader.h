@@ -30,6 +30,7 @@ struct GltfLoadResult {
   int material_variant = -1;  // the variant applied (GltfLoadParams::variant); -1: none
   std::vector<Animation> animations;  // every animation of the file
   std::vector<int> playing;  // the indices of those applied (GltfLoadParams::animation)
+  std::size_t morph_meshes = 0, skins = 0;  // meshes with morph targets; skins (not applied yet)
 };
 
 GltfLoadResult load_gltf(const std::string& path, const GltfLoadParams& params = {});

@@ -114,4 +114,37 @@ std::optional<TriangleMesh> convert_primitive(const AccessorReader& reader,
   return mesh;
 }
 
+void apply_morph_targets(const AccessorReader& reader, const tinygltf::Primitive& prim, const std::vector<float>& weights,
+                         const std::string& what, TriangleMesh& mesh) {
+  if (prim.targets.empty()) return;
+  if (weights.size() != prim.targets.size())
+    throw SceneLoadError(reader.file, fmt::format("{} has {} but {} morph weights", what,
+                                                  count_of(prim.targets.size(), "morph target"), weights.size()));
+  const std::size_t n = mesh.positions.size();
+  for (std::size_t t = 0; t < prim.targets.size(); ++t) {
+    if (weights[t] == 0.0f) continue;
+    for (const auto& [name, accessor] : prim.targets[t]) {
+      const std::string use = fmt::format("{} of morph target {} of {}", name, t, what);
+      const int width = name == "POSITION" || name == "NORMAL" || name == "TANGENT" ? 3 : 0;
+      if (width == 0) continue;  // other attributes (TEXCOORD_n, COLOR_n) are not morphed here
+      const std::vector<float> d = reader.floats(accessor, 3, use);
+      if (d.size() != 3 * n)
+        throw SceneLoadError(reader.file, fmt::format("accessor {} ({}) has {} elements, but POSITION has {}", accessor,
+                                                      use, d.size() / 3, n));
+      auto delta = [&](std::size_t i) { return weights[t] * glm::vec3(d[3 * i], d[3 * i + 1], d[3 * i + 2]); };
+      if (name == "POSITION")
+        for (std::size_t i = 0; i < n; ++i) mesh.positions[i] += delta(i);
+      else if (name == "NORMAL" && !mesh.normals.empty())
+        for (std::size_t i = 0; i < n; ++i) mesh.normals[i] += delta(i);
+      else if (name == "TANGENT" && !mesh.tangents.empty())
+        for (std::size_t i = 0; i < n; ++i) mesh.tangents[i] += glm::vec4(delta(i), 0.0f);
+    }
+  }
+  for (glm::vec3& v : mesh.normals) v = glm::length(v) > 0.0f ? glm::normalize(v) : v;
+  for (glm::vec4& v : mesh.tangents) {
+    const float len = glm::length(glm::vec3(v));
+    if (len > 0.0f) v = glm::vec4(glm::vec3(v) / len, v.w);
+  }
+}
+
 }  // namespace tessera

@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 
 #include <glm/gtc/quaternion.hpp>
 
@@ -167,6 +170,71 @@ TEST(GltfAnimationCli, FrameIsTimeTimesFpsAndTheHeaderRecordsIt) {
   const auto both = tessera_cli("render " + scene + common + " --frame 1 --time 2 -o " + dir + "/x.exr");
   EXPECT_EQ(both.exit_code, 2);  // bad usage
   EXPECT_NE(both.err.find("excludes"), std::string::npos) << both.err;
+}
+
+}  // namespace
+}  // namespace tessera
+
+// ---- morph targets -------------------------------------------------------------------------
+
+namespace tessera {
+namespace {
+
+// SimpleMorph: one triangle, base (0,0,0) (1,0,0) (0.5,0.5,0); target 0 moves the third vertex
+// by (-1, 1, 0), target 1 by (1, 1, 0) (the file's accessors 2 and 3). The third vertex is
+// (0.5 - w0 + w1, 0.5 + w0 + w1, 0) for weights (w0, w1).
+glm::vec3 third_vertex(const SceneDescription& s) { return s.meshes.at(s.instances.at(0).mesh).primitives.at(0).positions.at(2); }
+
+std::string simple_morph_with(const std::string& weights_json, const std::string& where) {
+  const std::string dir = test::make_temp_dir("simple-morph");
+  const std::string src = test::scene_path("khronos/SimpleMorph/glTF/");
+  for (const char* f : {"simpleMorphGeometry.bin", "simpleMorphAnimation.bin"})
+    std::filesystem::copy_file(src + f, dir + "/" + f);
+  std::ifstream in(src + "SimpleMorph.gltf");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // The mesh's default weights "[0.5, 0.5]" replaced, or the node given its own.
+  const std::size_t at = text.find("\"weights\"");
+  const std::size_t open = text.find('[', at), close = text.find(']', open);
+  if (where == "mesh") text.replace(open, close - open + 1, weights_json);
+  if (where == "node") {
+    const std::size_t node = text.find("\"mesh\"", text.find("\"nodes\""));
+    text.insert(node, "\"weights\" : " + weights_json + ", ");
+  }
+  std::ofstream(dir + "/m.gltf") << text;
+  return dir + "/m.gltf";
+}
+
+TEST(GltfMorph, WeightsZeroOneAndHalfGiveBaseTargetAndMidpoint) {
+  GltfLoadParams still;
+  still.animation = "none";  // the weights the file gives, not the animation's
+  const std::pair<std::string, glm::vec3> cases[] = {
+      {"[0, 0]", {0.5f, 0.5f, 0.0f}}, {"[1, 0]", {-0.5f, 1.5f, 0.0f}}, {"[0.5, 0]", {0.0f, 1.0f, 0.0f}},
+      {"[0, 1]", {1.5f, 1.5f, 0.0f}}, {"[0.5, 0.5]", {0.5f, 1.5f, 0.0f}}};
+  for (const auto& [weights, expected] : cases) {
+    const glm::vec3 v = third_vertex(load_gltf(simple_morph_with(weights, "mesh"), still).scene);
+    for (int c = 0; c < 3; ++c) EXPECT_FLOAT_EQ(v[c], expected[c]) << "mesh weights " << weights;
+  }
+  // The node's weights override the mesh's (the file's mesh keeps [0.5, 0.5]).
+  const glm::vec3 v = third_vertex(load_gltf(simple_morph_with("[1, 0]", "node"), still).scene);
+  EXPECT_FLOAT_EQ(v.x, -0.5f);
+  EXPECT_FLOAT_EQ(v.y, 1.5f);
+}
+
+// The animation drives the weights: at each key the vertex is where that key's weights put it.
+TEST(GltfMorph, AnimatedWeightsMoveTheVertex) {
+  const std::string path = test::scene_path("khronos/SimpleMorph/glTF/SimpleMorph.gltf");
+  const GltfLoadResult r = load_gltf(path);
+  const AnimationChannel& c = r.animations.at(0).channels.at(0);
+  ASSERT_EQ(c.path, AnimationPath::Weights);
+  ASSERT_EQ(c.width, 2);
+  for (std::size_t k = 0; k < c.times.size(); ++k) {
+    GltfLoadParams p;
+    p.time = c.times[k];
+    const glm::vec3 v = third_vertex(load_gltf(path, p).scene);
+    const float w0 = c.values[2 * k], w1 = c.values[2 * k + 1];
+    EXPECT_FLOAT_EQ(v.x, 0.5f - w0 + w1) << "key " << k;
+    EXPECT_FLOAT_EQ(v.y, 0.5f + w0 + w1) << "key " << k;
+  }
 }
 
 }  // namespace

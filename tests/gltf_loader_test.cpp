@@ -100,6 +100,7 @@ const Sample kSamples[] = {
     {"MultiUVTest/glTF-Binary/MultiUVTest.glb", 12, 12, 1, 1, 1, {-1, -1, -1}, {1, 1, 1.000001}},
     {"NegativeScaleTest/glTF-Binary/NegativeScaleTest.glb", 3884, 7724, 8, 11, 0, {-5.161674, -4.45354, -0.5}, {5.161674, 4.45354, 0.5}},
     {"OrientationTest/glTF-Binary/OrientationTest.glb", 524, 524, 13, 13, 0, {-5.330651, -5.330651, -5.330651}, {5.330651, 5.330651, 5.330651}},
+    {"SimpleMorph/glTF/SimpleMorph.gltf", 1, 1, 1, 1, 0, {0, 0, 0}, {1, 0.5, 0}},  // weights 0, 0 at time 0
     {"SimpleSparseAccessor/glTF/SimpleSparseAccessor.gltf", 12, 12, 1, 1, 0, {0, 0, 0}, {6, 4, 0}},
     {"TextureCoordinateTest/glTF-Binary/TextureCoordinateTest.glb", 10, 10, 5, 5, 0, {-1.2, -1.2, -0.05259115}, {1.2, 1.2, 5.255118e-07}},
     {"TextureSettingsTest/glTF-Binary/TextureSettingsTest.glb", 72, 72, 10, 10, 0, {-5.161674, -5.618556, -0.1500004}, {5.161674, 4.453537, 0.1000003}},
