@@ -16,6 +16,8 @@ A generator beside this file imports it with:
 """
 
 import base64
+import os
+import sys
 import math
 import struct
 import zlib
@@ -398,3 +400,21 @@ def prism(profile, height, base_y=0.0):
         j = (i + 1) % k
         m.flat_polygon([bottom[i], bottom[j], top[j], top[i]])
     return m
+
+
+def write_or_check(outputs, out_dir, check, program):
+    """Writes each {file name: bytes} into out_dir, or with check writes nothing and returns 1
+    when a file there differs from what would be written (naming it), else 0."""
+    if check:
+        stale = [os.path.join(out_dir, name) for name, data in sorted(outputs.items())
+                 if not os.path.exists(os.path.join(out_dir, name))
+                 or open(os.path.join(out_dir, name), "rb").read() != data]
+        for path in stale:
+            print("%s: %s is not what the generator writes" % (program, path), file=sys.stderr)
+        return 1 if stale else 0
+    os.makedirs(out_dir, exist_ok=True)
+    for name, data in sorted(outputs.items()):
+        with open(os.path.join(out_dir, name), "wb") as f:
+            f.write(data)
+        print("wrote %s (%d bytes)" % (os.path.join(out_dir, name), len(data)))
+    return 0

@@ -30,7 +30,7 @@ import sys
 
 sys.dont_write_bytecode = True  # no __pycache__ in scenes/
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from gltf_builder import BufferBuilder, cross, dot, normalize, sub  # noqa: E402  (scenes/gltf_builder.py)
+from gltf_builder import BufferBuilder, cross, dot, normalize, sub, write_or_check  # noqa: E402  (scenes/gltf_builder.py)
 
 GLTF_NAME = "cornell-box.gltf"
 BIN_NAME = "cornell-box.bin"
@@ -266,21 +266,7 @@ def main():
                         help="write nothing; exit 1 if the files in --out-dir differ from what would be written")
     args = parser.parse_args()
     outputs = dict(zip((GLTF_NAME, BIN_NAME), build()))
-    if args.check:
-        stale = []
-        for name, data in outputs.items():
-            path = os.path.join(args.out_dir, name)
-            if not os.path.exists(path) or open(path, "rb").read() != data:
-                stale.append(path)
-        for path in stale:
-            print("make_cornell_box: %s is not what the generator writes" % path, file=sys.stderr)
-        return 1 if stale else 0
-    os.makedirs(args.out_dir, exist_ok=True)
-    for name, data in outputs.items():
-        with open(os.path.join(args.out_dir, name), "wb") as f:
-            f.write(data)
-        print("wrote %s (%d bytes)" % (os.path.join(args.out_dir, name), len(data)))
-    return 0
+    return write_or_check(outputs, args.out_dir, args.check, "make_cornell_box")
 
 
 if __name__ == "__main__":

@@ -481,19 +481,7 @@ def main():
                         help="write nothing; exit 1 if the files in --out-dir differ from what would be written")
     args = parser.parse_args()
     outputs = {name: make() for name, make in OUTPUTS.items()}
-    if args.check:
-        stale = [os.path.join(args.out_dir, name) for name, data in outputs.items()
-                 if not os.path.exists(os.path.join(args.out_dir, name))
-                 or open(os.path.join(args.out_dir, name), "rb").read() != data]
-        for path in stale:
-            print("make_material_extensions: %s is not what the generator writes" % path, file=sys.stderr)
-        return 1 if stale else 0
-    os.makedirs(args.out_dir, exist_ok=True)
-    for name, data in outputs.items():
-        with open(os.path.join(args.out_dir, name), "wb") as f:
-            f.write(data)
-        print("wrote %s (%d bytes)" % (os.path.join(args.out_dir, name), len(data)))
-    return 0
+    return gb.write_or_check(outputs, args.out_dir, args.check, "make_material_extensions")
 
 
 if __name__ == "__main__":

@@ -29,7 +29,7 @@ import sys
 
 sys.dont_write_bytecode = True  # no __pycache__ in scenes/
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from gltf_builder import BufferBuilder, basis_quaternion  # noqa: E402  (scenes/gltf_builder.py)
+from gltf_builder import BufferBuilder, basis_quaternion, write_or_check  # noqa: E402  (scenes/gltf_builder.py)
 
 GENERATOR = "tessera scenes/paper/make_paper_scenes.py"
 SEED_FILE = os.path.join("seed", "grid_of_spheres.txt")
@@ -953,21 +953,7 @@ def main():
     outputs = build_all(here)
     if args.report:
         print_report()
-    if args.check:
-        stale = []
-        for name, data in sorted(outputs.items()):
-            path = os.path.join(args.out_dir, name)
-            if not os.path.exists(path) or open(path, "rb").read() != data:
-                stale.append(path)
-        for path in stale:
-            print("make_paper_scenes: %s is not what the generator writes" % path, file=sys.stderr)
-        return 1 if stale else 0
-    os.makedirs(args.out_dir, exist_ok=True)
-    for name, data in sorted(outputs.items()):
-        with open(os.path.join(args.out_dir, name), "wb") as f:
-            f.write(data)
-        print("wrote %s (%d bytes)" % (os.path.join(args.out_dir, name), len(data)))
-    return 0
+    return write_or_check(outputs, args.out_dir, args.check, "make_paper_scenes")
 
 
 if __name__ == "__main__":
