@@ -15,6 +15,7 @@ A generator beside this file imports it with:
     import gltf_builder
 """
 
+import argparse
 import base64
 import os
 import sys
@@ -418,3 +419,14 @@ def write_or_check(outputs, out_dir, check, program):
             f.write(data)
         print("wrote %s (%d bytes)" % (os.path.join(out_dir, name), len(data)))
     return 0
+
+
+def generator_arguments(doc, script):
+    """The generators' command line: --out-dir (default: beside `script`) and --check. Returns
+    the parser, to which a generator may add its own options before parse_args()."""
+    parser = argparse.ArgumentParser(description=doc.splitlines()[0])
+    parser.add_argument("--out-dir", default=os.path.dirname(os.path.abspath(script)),
+                        help="where to write the files [default: beside this script]")
+    parser.add_argument("--check", action="store_true",
+                        help="write nothing; exit 1 if the files in --out-dir differ from what would be written")
+    return parser

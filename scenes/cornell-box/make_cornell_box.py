@@ -22,7 +22,6 @@ Standard library only, deterministic: running it again rewrites both files byte 
 Usage: python3 make_cornell_box.py [--out-dir DIR] [--check]
 """
 
-import argparse
 import json
 import math
 import os
@@ -30,7 +29,7 @@ import sys
 
 sys.dont_write_bytecode = True  # no __pycache__ in scenes/
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from gltf_builder import BufferBuilder, cross, dot, normalize, sub, write_or_check  # noqa: E402  (scenes/gltf_builder.py)
+from gltf_builder import BufferBuilder, cross, dot, normalize, sub, generator_arguments, write_or_check  # noqa: E402  (scenes/gltf_builder.py)
 
 GLTF_NAME = "cornell-box.gltf"
 BIN_NAME = "cornell-box.bin"
@@ -259,12 +258,7 @@ def build():
 
 
 def main():
-    here = os.path.dirname(os.path.abspath(__file__))
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--out-dir", default=here, help="where to write the two files [default: beside this script]")
-    parser.add_argument("--check", action="store_true",
-                        help="write nothing; exit 1 if the files in --out-dir differ from what would be written")
-    args = parser.parse_args()
+    args = generator_arguments(__doc__, __file__).parse_args()
     outputs = dict(zip((GLTF_NAME, BIN_NAME), build()))
     return write_or_check(outputs, args.out_dir, args.check, "make_cornell_box")
 

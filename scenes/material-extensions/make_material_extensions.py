@@ -20,7 +20,6 @@ every file byte for byte.
 Usage: python3 make_material_extensions.py [--out-dir DIR] [--check]
 """
 
-import argparse
 import json
 import math
 import os
@@ -474,12 +473,7 @@ OUTPUTS = {
 
 
 def main():
-    here = os.path.dirname(os.path.abspath(__file__))
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--out-dir", default=here, help="where to write the files [default: beside this script]")
-    parser.add_argument("--check", action="store_true",
-                        help="write nothing; exit 1 if the files in --out-dir differ from what would be written")
-    args = parser.parse_args()
+    args = gb.generator_arguments(__doc__, __file__).parse_args()
     outputs = {name: make() for name, make in OUTPUTS.items()}
     return gb.write_or_check(outputs, args.out_dir, args.check, "make_material_extensions")
 

@@ -21,7 +21,6 @@ Standard library only, deterministic: running it again rewrites every file byte 
 Usage: python3 make_paper_scenes.py [--out-dir DIR] [--check] [--report]
 """
 
-import argparse
 import json
 import math
 import os
@@ -29,7 +28,7 @@ import sys
 
 sys.dont_write_bytecode = True  # no __pycache__ in scenes/
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from gltf_builder import BufferBuilder, basis_quaternion, write_or_check  # noqa: E402  (scenes/gltf_builder.py)
+from gltf_builder import BufferBuilder, basis_quaternion, generator_arguments, write_or_check  # noqa: E402  (scenes/gltf_builder.py)
 
 GENERATOR = "tessera scenes/paper/make_paper_scenes.py"
 SEED_FILE = os.path.join("seed", "grid_of_spheres.txt")
@@ -944,10 +943,7 @@ def print_report():
 
 def main():
     here = os.path.dirname(os.path.abspath(__file__))
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--out-dir", default=here, help="where to write the files [default: beside this script]")
-    parser.add_argument("--check", action="store_true",
-                        help="write nothing; exit 1 if the files in --out-dir differ from what would be written")
+    parser = generator_arguments(__doc__, __file__)
     parser.add_argument("--report", action="store_true", help="also print how the tessellation was worked out")
     args = parser.parse_args()
     outputs = build_all(here)
