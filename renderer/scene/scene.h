@@ -132,8 +132,14 @@ struct TriangleMesh {
   std::vector<glm::vec4> colors;  // COLOR_0 as linear RGBA
   std::vector<std::uint32_t> indices;  // three per triangle
   int material = -1;  // -1 = the glTF default material
+  // A mesh that deforms while the shutter is open (a skin, animated morph weights): its
+  // positions, normals and tangents at motion steps 1 .. motion_steps - 1 (step 0 is the
+  // arrays above), each as long as `positions`. Empty: it keeps its shape.
+  std::vector<std::vector<glm::vec3>> motion_positions, motion_normals;
+  std::vector<std::vector<glm::vec4>> motion_tangents;
 
   std::size_t triangle_count() const { return indices.size() / 3; }
+  bool deforms() const { return !motion_positions.empty(); }
 };
 
 // A glTF mesh: the primitives drawn together wherever a node places the mesh.
@@ -147,6 +153,9 @@ struct Instance {
   int mesh = -1;
   glm::mat4 object_to_world{1.0f};
   std::string node_name;
+  // A placement that moves while the shutter is open: object_to_world at motion steps
+  // 1 .. motion_steps - 1 (step 0 is object_to_world). Empty: it stands still.
+  std::vector<glm::mat4> motion;
 };
 
 struct Camera {
@@ -158,6 +167,9 @@ struct Camera {
   float aspect_ratio = 0.0f;  // 0 = not given: use the image's
   float xmag = 1.0f, ymag = 1.0f;  // orthographic half extents
   float znear = 0.0f, zfar = 0.0f;  // 0 = none
+  // A camera that moves while the shutter is open: camera_to_world at motion steps
+  // 1 .. motion_steps - 1 (step 0 is camera_to_world). Empty: it stands still.
+  std::vector<glm::mat4> motion;
 };
 
 // KHR_lights_punctual, with the specification's photometric units.
@@ -183,7 +195,12 @@ struct SceneDescription {
   std::vector<Camera> cameras;
   std::vector<PunctualLight> lights;
   std::vector<std::string> extensions_used, extensions_required;
-  Bounds3 bounds;  // world-space bounds of every instance
+  Bounds3 bounds;  // world-space bounds of every instance, at every motion step
+  // Motion blur: the shutter is open from scene time shutter_open to shutter_close (seconds),
+  // and what moves in that time is described at motion_steps evenly spaced times, step 0 at
+  // the opening and the last at the closing. 1: no motion blur, everything at shutter_open.
+  float shutter_open = 0.0f, shutter_close = 0.0f;
+  int motion_steps = 1;
 };
 
 }  // namespace tessera
