@@ -82,7 +82,14 @@ int run_info(const InfoOptions& o) {
   }
   print_animations(loaded.animations, o.fps);
   if (loaded.morph_meshes > 0) fmt::print("morphs      {} meshes with morph targets\n", loaded.morph_meshes);
-  if (loaded.skins > 0) fmt::print("skins       {} (not applied yet: bind pose)\n", loaded.skins);
+  if (!loaded.skins.empty()) {
+    fmt::print("skins       {}\n", loaded.skins.size());
+    for (std::size_t i = 0; i < loaded.skins.size(); ++i) {
+      const Skin& k = loaded.skins[i];
+      fmt::print("  {}: '{}' {} joints{}\n", i, k.name, k.joints.size(),
+                 k.skeleton >= 0 ? fmt::format(", skeleton node {}", k.skeleton) : "");
+    }
+  }
   fmt::print("textures    {} images\n", textured);
   fmt::print("cameras     {}\n", s.cameras.size());
   for (std::size_t i = 0; i < s.cameras.size(); ++i) {

@@ -79,30 +79,71 @@ class Converter {
     if (!params.variant.empty())
       result_.material_variant = choose_material_variant(result_.material_variants, params.variant, file_);
     out_.images = convert_images(model_, file_);
-    const std::vector<int> parent = check_node_hierarchy(model_, file_);
+    parent_ = check_node_hierarchy(model_, file_);
     result_.animations = read_animations(model_, reader_, file_);
     result_.playing = choose_animations(result_.animations, params.animation, file_);
-    poses_ = pose_nodes(result_.animations, result_.playing, params.time, model_.nodes.size());
+    result_.skins = read_skins(model_, reader_, file_);
+    pose_steps(params);
     for (const tinygltf::Mesh& m : model_.meshes)
       result_.morph_meshes += std::any_of(m.primitives.begin(), m.primitives.end(),
                                           [](const tinygltf::Primitive& p) { return !p.targets.empty(); });
-    result_.skins = model_.skins.size();
-    if (result_.skins > 0) warnings_.push_back("skins are not applied yet: skinned meshes render in their bind pose");
-    traverse(scene_roots(model_, choose_scene(params.scene), parent, file_));
+    traverse(scene_roots(model_, choose_scene(params.scene), parent_, file_));
   }
 
  private:
   [[noreturn]] void fail(const std::string& problem) const { throw SceneLoadError(file_, problem); }
 
-  // The morph weights node `index` gives its mesh: animated, else the node's, else the mesh's,
-  // else zero. Empty when the mesh has no targets or every weight is 0 (the base shape).
-  std::vector<float> morph_weights(const tinygltf::Node& node, int index) const {
+  int steps() const { return static_cast<int>(poses_.size()); }
+
+  // The times the scene is described at: `time` alone, or motion_steps across the shutter.
+  void pose_steps(const GltfLoadParams& params) {
+    const int steps = std::max(params.motion_steps, 1);
+    out_.motion_steps = steps;
+    out_.shutter_open = params.time + (steps > 1 ? params.shutter_open : 0.0f);
+    out_.shutter_close = params.time + (steps > 1 ? params.shutter_close : 0.0f);
+    for (int k = 0; k < steps; ++k) {
+      const float f = steps > 1 ? static_cast<float>(k) / static_cast<float>(steps - 1) : 0.0f;
+      const float t = out_.shutter_open + f * (out_.shutter_close - out_.shutter_open);
+      poses_.push_back(pose_nodes(result_.animations, result_.playing, t, model_.nodes.size()));
+    }
+    world_.assign(steps, std::vector<glm::mat4>(model_.nodes.size()));
+    world_known_.assign(steps, std::vector<bool>(model_.nodes.size(), false));
+  }
+
+  // Node `index`'s world transform at motion step `step`: its parents' composed with its own.
+  // Without recursion (hierarchies can be deep): up to the nearest known ancestor, then down.
+  const glm::mat4& world(int index, int step) {
+    std::vector<int> chain;
+    for (int n = index; n >= 0 && !world_known_[step][n]; n = parent_[n]) chain.push_back(n);
+    for (auto n = chain.rbegin(); n != chain.rend(); ++n) {
+      const int p = parent_[*n];
+      const glm::mat4 w = (p >= 0 ? world_[step][p] : glm::mat4(1.0f)) * local_transform(model_.nodes[*n], *n, step);
+      if (!finite_matrix(w))
+        fail(fmt::format("node {} has a world transform (its own composed with its ancestors') "
+                         "beyond the range of 32-bit floats", *n));
+      world_[step][*n] = w;
+      world_known_[step][*n] = true;
+    }
+    return world_[step][index];
+  }
+
+  // A node's world transform at every motion step.
+  std::vector<glm::mat4> worlds(int index) {
+    std::vector<glm::mat4> w;
+    for (int k = 0; k < steps(); ++k) w.push_back(world(index, k));
+    return w;
+  }
+
+  // The morph weights node `index` gives its mesh at motion step `step`: animated, else the
+  // node's, else the mesh's, else zero. Empty when the mesh has no targets or every weight is
+  // 0 (the base shape).
+  std::vector<float> morph_weights(const tinygltf::Node& node, int index, int step) const {
     const tinygltf::Mesh& mesh = model_.meshes[node.mesh];
     std::size_t targets = 0;
     for (const tinygltf::Primitive& p : mesh.primitives) targets = std::max(targets, p.targets.size());
     if (targets == 0) return {};
     std::vector<float> w(targets, 0.0f);
-    if (!poses_[index].weights.empty()) w = poses_[index].weights;
+    if (!poses_[step][index].weights.empty()) w = poses_[step][index].weights;
     else if (!node.weights.empty()) w.assign(node.weights.begin(), node.weights.end());
     else if (!mesh.weights.empty()) w.assign(mesh.weights.begin(), mesh.weights.end());
     if (!fits_float(w)) fail(fmt::format("node {} has morph weights beyond the range of 32-bit floats", index));
@@ -153,25 +194,21 @@ class Converter {
 
   // Depth first, children in order, without recursion: hierarchies can be deep.
   void traverse(const std::vector<int>& roots) {
-    std::vector<std::pair<int, glm::mat4>> stack;
-    for (auto r = roots.rbegin(); r != roots.rend(); ++r) stack.emplace_back(*r, glm::mat4(1.0f));
+    std::vector<int> stack(roots.rbegin(), roots.rend());
     while (!stack.empty()) {
-      const auto [index, parent_to_world] = stack.back();
+      const int index = stack.back();
       stack.pop_back();
       const tinygltf::Node& node = model_.nodes[index];
-      const glm::mat4 world = parent_to_world * local_transform(node, index);
-      if (!finite_matrix(world))
-        fail(fmt::format("node {} has a world transform (its own composed with its ancestors') "
-                         "beyond the range of 32-bit floats", index));
-      if (node.mesh >= 0) add_instance(node, index, world);
-      if (node.camera >= 0) add_camera(node, index, world);
+      for (int k = 0; k < steps(); ++k) world(index, k);
+      if (node.mesh >= 0) add_instance(node, index);
+      if (node.camera >= 0) add_camera(node, index);
       if (auto it = node.extensions.find("KHR_lights_punctual"); it != node.extensions.end())
-        add_light(it->second, index, world);
-      for (auto c = node.children.rbegin(); c != node.children.rend(); ++c) stack.emplace_back(*c, world);
+        add_light(it->second, index, world(index, 0));
+      stack.insert(stack.end(), node.children.rbegin(), node.children.rend());
     }
   }
 
-  glm::mat4 local_transform(const tinygltf::Node& node, int index) const {
+  glm::mat4 local_transform(const tinygltf::Node& node, int index, int step) const {
     auto check = [&](const std::vector<double>& v, const char* what, std::size_t size) {
       if (!v.empty() && v.size() != size)
         fail(fmt::format("node {} has a {} of {} numbers; it needs {}", index, what, v.size(), size));
@@ -189,7 +226,7 @@ class Converter {
     glm::dquat r(1.0, 0.0, 0.0, 0.0);
     if (!node.translation.empty()) t = glm::make_vec3(node.translation.data());
     if (!node.scale.empty()) s = glm::make_vec3(node.scale.data());
-    const NodePose& pose = poses_[index];  // what the playing animations drive
+    const NodePose& pose = poses_[step][index];  // what the playing animations drive
     if (pose.translated) t = glm::dvec3(pose.translation);
     if (pose.scaled) s = glm::dvec3(pose.scale);
     if (pose.rotated) {
@@ -214,32 +251,67 @@ class Converter {
     return local;
   }
 
-  void add_instance(const tinygltf::Node& node, int index, const glm::mat4& world) {
+  // What deforms node `index`'s mesh at each motion step: morph weights, joint matrices.
+  struct Deformation {
+    std::vector<std::vector<float>> weights;  // per step; empty: the base shape
+    const Skin* skin = nullptr;
+    std::vector<std::vector<glm::mat4>> joints;  // per step, with a skin
+    bool any() const {
+      return skin || std::any_of(weights.begin(), weights.end(), [](const auto& w) { return !w.empty(); });
+    }
+  };
+
+  Deformation deformation(const tinygltf::Node& node, int index) {
+    Deformation d;
+    for (int k = 0; k < steps(); ++k) d.weights.push_back(morph_weights(node, index, k));
+    if (node.skin < 0) return d;
+    if (node.skin >= static_cast<int>(result_.skins.size()))
+      fail(fmt::format("node {} refers to skin {}, but the file has {}", index, node.skin,
+                       count_of(result_.skins.size(), "skin")));
+    d.skin = &result_.skins[node.skin];
+    for (int k = 0; k < steps(); ++k) {
+      std::vector<glm::mat4> joint_world;
+      for (int j : d.skin->joints) joint_world.push_back(world(j, k));
+      d.joints.push_back(joint_matrices(*d.skin, joint_world));
+    }
+    return d;
+  }
+
+  void add_instance(const tinygltf::Node& node, int index) {
     if (node.mesh >= static_cast<int>(model_.meshes.size()))
       fail(fmt::format("node {} refers to mesh {}, but the file has {}", index, node.mesh,
                        count_of(model_.meshes.size(), "mesh")));
     // A mesh with no triangles (only points or lines) is neither stored nor placed. A morphed
-    // mesh is the node's own (another node may weigh its targets differently).
-    const std::vector<float> weights = morph_weights(node, index);
-    auto [it, inserted] = mesh_slot_.try_emplace(weights.empty() ? node.mesh : -1 - index, -1);
+    // or skinned mesh is the node's own (another node may deform it differently).
+    const Deformation deform = deformation(node, index);
+    auto [it, inserted] = mesh_slot_.try_emplace(deform.any() ? -1 - index : node.mesh, -1);
     if (inserted) {
-      Mesh mesh = convert_mesh(node.mesh, weights);
+      Mesh mesh = convert_mesh(node.mesh, deform);
       if (!mesh.primitives.empty()) {
         it->second = static_cast<int>(out_.meshes.size());
         out_.meshes.push_back(std::move(mesh));
       }
     }
     if (it->second < 0) return;
-    out_.instances.push_back({it->second, world, node.name});
-    Bounds3 placed;  // finite matrices and positions can still overflow together
+    // A skinned mesh is in world space already: the specification ignores its node's transform.
+    const std::vector<glm::mat4> placed =
+        deform.skin ? std::vector<glm::mat4>(steps(), glm::mat4(1.0f)) : worlds(index);
+    Instance instance{it->second, placed[0], node.name, {}};
+    if (std::any_of(placed.begin(), placed.end(), [&](const glm::mat4& m) { return m != placed[0]; }))
+      instance.motion.assign(placed.begin() + 1, placed.end());
+    out_.instances.push_back(std::move(instance));
+    Bounds3 reach;  // finite matrices and positions can still overflow together
     for (const TriangleMesh& prim : out_.meshes[it->second].primitives)
-      for (const glm::vec3& p : prim.positions) placed.extend(glm::vec3(world * glm::vec4(p, 1.0f)));
-    if (!all_finite(placed.lo) || !all_finite(placed.hi))
+      for (int k = 0; k < steps(); ++k) {
+        const auto& positions = k == 0 || !prim.deforms() ? prim.positions : prim.motion_positions[k - 1];
+        for (const glm::vec3& p : positions) reach.extend(glm::vec3(placed[k] * glm::vec4(p, 1.0f)));
+      }
+    if (!all_finite(reach.lo) || !all_finite(reach.hi))
       fail(fmt::format("node {} places mesh {} beyond the range of 32-bit floats", index, node.mesh));
-    out_.bounds.extend(placed);
+    out_.bounds.extend(reach);
   }
 
-  Mesh convert_mesh(int index, const std::vector<float>& weights) {
+  Mesh convert_mesh(int index, const Deformation& deform) {
     const tinygltf::Mesh& src = model_.meshes[index];
     Mesh mesh;
     mesh.name = src.name.empty() ? fmt::format("mesh {}", index) : src.name;
@@ -247,7 +319,7 @@ class Converter {
       const std::string what = fmt::format("mesh {} primitive {}", index, p);
       auto prim = convert_primitive(reader_, src.primitives[p], what, warnings_);
       if (!prim) continue;
-      if (!weights.empty()) apply_morph_targets(reader_, src.primitives[p], weights, what, *prim);
+      if (deform.any()) deform_primitive(src.primitives[p], deform, what, *prim);
       prim->material = material_for_variant(src.primitives[p], result_.material_variant,
                                             result_.material_variants.size(), out_.materials.size(), file_, what);
       if (prim->material >= static_cast<int>(out_.materials.size()))
@@ -258,7 +330,43 @@ class Converter {
     return mesh;
   }
 
-  void add_camera(const tinygltf::Node& node, int index, const glm::mat4& world) {
+  // Morphs, then skins, the primitive's shape at every motion step: step 0 in place, the
+  // others as its motion (dropped when nothing moves).
+  void deform_primitive(const tinygltf::Primitive& src, const Deformation& deform, const std::string& what,
+                        TriangleMesh& prim) {
+    SkinInfluences influences;
+    if (deform.skin) {
+      influences = read_skin_influences(reader_, src, prim.positions.size(), deform.skin->joints.size(), what);
+      if (influences.per_vertex == 0) fail(fmt::format("{} is skinned but has no JOINTS_0 and WEIGHTS_0", what));
+    }
+    TriangleMesh base;
+    base.positions = prim.positions, base.normals = prim.normals, base.tangents = prim.tangents;
+    for (int k = 0; k < steps(); ++k) {
+      TriangleMesh shape = base;
+      if (!deform.weights[k].empty()) apply_morph_targets(reader_, src, deform.weights[k], what, shape);
+      if (deform.skin) apply_skin(influences, deform.joints[k], shape);
+      if (k == 0) {
+        prim.positions = std::move(shape.positions);
+        prim.normals = std::move(shape.normals);
+        prim.tangents = std::move(shape.tangents);
+      } else {
+        prim.motion_positions.push_back(std::move(shape.positions));
+        prim.motion_normals.push_back(std::move(shape.normals));
+        prim.motion_tangents.push_back(std::move(shape.tangents));
+      }
+    }
+    const auto differs = [](const auto& steps, const auto& first) {
+      return std::any_of(steps.begin(), steps.end(), [&](const auto& s) { return s != first; });
+    };
+    if (!differs(prim.motion_positions, prim.positions) && !differs(prim.motion_normals, prim.normals) &&
+        !differs(prim.motion_tangents, prim.tangents)) {
+      prim.motion_positions.clear();
+      prim.motion_normals.clear();
+      prim.motion_tangents.clear();
+    }
+  }
+
+  void add_camera(const tinygltf::Node& node, int index) {
     if (node.camera >= static_cast<int>(model_.cameras.size()))
       fail(fmt::format("node {} refers to camera {}, but the file has {}", index, node.camera,
                        count_of(model_.cameras.size(), "camera")));
@@ -266,14 +374,11 @@ class Converter {
     Camera cam;
     cam.name = !src.name.empty() ? src.name : !node.name.empty() ? node.name
                                                                  : fmt::format("camera {}", node.camera);
-    // Cameras ignore the node's scale: keep an orthonormal frame and the position.
-    glm::vec3 x = glm::vec3(world[0]), y = glm::vec3(world[1]);
-    glm::vec3 z = glm::normalize(glm::cross(x, y));
-    x = glm::normalize(x);
-    y = glm::cross(z, x);
-    if (!all_finite((z)))
-      fail(fmt::format("node {} places camera {} with a degenerate transform", index, node.camera));
-    cam.camera_to_world = glm::mat4(glm::vec4(x, 0), glm::vec4(y, 0), glm::vec4(z, 0), world[3]);
+    std::vector<glm::mat4> frames;
+    for (const glm::mat4& w : worlds(index)) frames.push_back(camera_frame(w, index, node.camera));
+    cam.camera_to_world = frames[0];
+    if (std::any_of(frames.begin(), frames.end(), [&](const glm::mat4& m) { return m != frames[0]; }))
+      cam.motion.assign(frames.begin() + 1, frames.end());
     if (src.type == "orthographic") {
       cam.projection = Camera::Projection::Orthographic;
       cam.xmag = static_cast<float>(std::abs(src.orthographic.xmag));
@@ -296,6 +401,16 @@ class Converter {
       fail(fmt::format("camera {} has unknown type '{}'", node.camera, src.type));
     }
     out_.cameras.push_back(cam);
+  }
+
+  // Cameras ignore the node's scale: an orthonormal frame and the position.
+  glm::mat4 camera_frame(const glm::mat4& world, int index, int camera) const {
+    glm::vec3 x = glm::vec3(world[0]), y = glm::vec3(world[1]);
+    glm::vec3 z = glm::normalize(glm::cross(x, y));
+    x = glm::normalize(x);
+    y = glm::cross(z, x);
+    if (!all_finite((z))) fail(fmt::format("node {} places camera {} with a degenerate transform", index, camera));
+    return glm::mat4(glm::vec4(x, 0), glm::vec4(y, 0), glm::vec4(z, 0), world[3]);
   }
 
   void add_light(const tinygltf::Value& ext, int index, const glm::mat4& world) {
@@ -330,8 +445,11 @@ class Converter {
   SceneDescription& out_;
   std::vector<std::string>& warnings_;
   AccessorReader reader_;
-  std::map<int, int> mesh_slot_;  // glTF mesh index (-1 - node for a morphed one) -> index in out_.meshes
-  std::vector<NodePose> poses_;  // per node, at the requested time
+  std::map<int, int> mesh_slot_;  // glTF mesh index (-1 - node for a deformed one) -> index in out_.meshes
+  std::vector<int> parent_;  // per node, -1 for roots
+  std::vector<std::vector<NodePose>> poses_;  // per motion step, per node
+  std::vector<std::vector<glm::mat4>> world_;  // per motion step, per node, once known
+  std::vector<std::vector<bool>> world_known_;
 };
 
 std::string directory_of(const std::string& path) {
@@ -349,18 +467,12 @@ void deduplicate(std::vector<std::string>& warnings) {
 
 }  // namespace
 
-GltfLoadResult load_gltf_from_memory(const std::vector<std::uint8_t>& bytes,
-                                     const std::string& display_name, const std::string& base_dir,
-                                     const GltfLoadParams& params) {
-  const tinygltf::Model model = parse_gltf(bytes, display_name, base_dir);
-  GltfLoadResult result;
-  result.scene.source_path = display_name;
-  Converter(model, display_name, result).run(params);
-  deduplicate(result.warnings);
-  return result;
+GltfDocument read_gltf_from_memory(const std::vector<std::uint8_t>& bytes, const std::string& display_name,
+                                   const std::string& base_dir) {
+  return GltfDocument{display_name, parse_gltf(bytes, display_name, base_dir)};
 }
 
-GltfLoadResult load_gltf(const std::string& path, const GltfLoadParams& params) {
+GltfDocument read_gltf(const std::string& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw SceneLoadError(path, "is a directory, not a glTF file");
   std::ifstream in(path, std::ios::binary);
@@ -368,7 +480,25 @@ GltfLoadResult load_gltf(const std::string& path, const GltfLoadParams& params) 
   std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)),
                                   std::istreambuf_iterator<char>());
   if (in.bad()) throw SceneLoadError(path, "could not be read");
-  return load_gltf_from_memory(bytes, path, directory_of(path), params);
+  return read_gltf_from_memory(bytes, path, directory_of(path));
+}
+
+GltfLoadResult convert_gltf(const GltfDocument& document, const GltfLoadParams& params) {
+  GltfLoadResult result;
+  result.scene.source_path = document.path;
+  Converter(document.model, document.path, result).run(params);
+  deduplicate(result.warnings);
+  return result;
+}
+
+GltfLoadResult load_gltf_from_memory(const std::vector<std::uint8_t>& bytes,
+                                     const std::string& display_name, const std::string& base_dir,
+                                     const GltfLoadParams& params) {
+  return convert_gltf(read_gltf_from_memory(bytes, display_name, base_dir), params);
+}
+
+GltfLoadResult load_gltf(const std::string& path, const GltfLoadParams& params) {
+  return convert_gltf(read_gltf(path), params);
 }
 
 }  // namespace tessera

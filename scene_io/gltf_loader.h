@@ -8,6 +8,7 @@
 
 #include "renderer/scene/scene.h"
 #include "scene_io/gltf_animation.h"
+#include "scene_io/gltf_skin.h"
 
 namespace tessera {
 
@@ -21,6 +22,11 @@ struct GltfLoadParams {
   // in seconds at which the nodes are posed.
   std::string animation{};
   float time = 0.0f;
+  // Motion blur: the shutter is open from time + shutter_open to time + shutter_close
+  // (seconds). With motion_steps > 1, what moves in that time is described at that many evenly
+  // spaced times (SceneDescription::motion_steps); with 1 the scene is posed at `time` alone.
+  float shutter_open = 0.0f, shutter_close = 0.0f;
+  int motion_steps = 1;
 };
 
 struct GltfLoadResult {
@@ -30,13 +36,28 @@ struct GltfLoadResult {
   int material_variant = -1;  // the variant applied (GltfLoadParams::variant); -1: none
   std::vector<Animation> animations;  // every animation of the file
   std::vector<int> playing;  // the indices of those applied (GltfLoadParams::animation)
-  std::size_t morph_meshes = 0, skins = 0;  // meshes with morph targets; skins (not applied yet)
+  std::size_t morph_meshes = 0;  // meshes with morph targets
+  std::vector<Skin> skins;
 };
 
-GltfLoadResult load_gltf(const std::string& path, const GltfLoadParams& params = {});
+// A glTF file parsed once (tinygltf's model with its buffers and decoded images), to be
+// converted at as many times as a frame sequence needs.
+struct GltfDocument {
+  std::string path;  // as given: errors name it
+  tinygltf::Model model;
+};
 
-// The same loader over bytes in memory (.glb when they start with "glTF", else JSON).
-// External resources are looked up relative to base_dir. Used by the fuzzer and tests.
+GltfDocument read_gltf(const std::string& path);
+// The same over bytes in memory (.glb when they start with "glTF", else JSON). External
+// resources are looked up relative to base_dir. Used by the fuzzer and tests.
+GltfDocument read_gltf_from_memory(const std::vector<std::uint8_t>& bytes, const std::string& display_name,
+                                   const std::string& base_dir);
+
+// The document's scene, posed as `params` ask.
+GltfLoadResult convert_gltf(const GltfDocument& document, const GltfLoadParams& params = {});
+
+// read_gltf and convert_gltf together.
+GltfLoadResult load_gltf(const std::string& path, const GltfLoadParams& params = {});
 GltfLoadResult load_gltf_from_memory(const std::vector<std::uint8_t>& bytes,
                                      const std::string& display_name,
                                      const std::string& base_dir,

@@ -239,3 +239,47 @@ TEST(GltfMorph, AnimatedWeightsMoveTheVertex) {
 
 }  // namespace
 }  // namespace tessera
+
+namespace tessera {
+namespace {
+
+// Motion blur's description: with 3 motion steps over a shutter, a moving node's placement,
+// a skinned mesh's vertices and the shutter are those of the scene posed at each step's time
+// (open, middle, close); what stands still gets no motion.
+TEST(GltfMotionSteps, EachStepIsTheSceneAtItsTime) {
+  const std::string box = test::scene_path("khronos/BoxAnimated/glTF-Binary/BoxAnimated.glb");
+  GltfLoadParams params{"", "", "", 1.0f};
+  params.shutter_open = -0.25f, params.shutter_close = 0.25f, params.motion_steps = 3;
+  const SceneDescription blurred = load_gltf(box, params).scene;
+  EXPECT_EQ(blurred.motion_steps, 3);
+  EXPECT_FLOAT_EQ(blurred.shutter_open, 0.75f);
+  EXPECT_FLOAT_EQ(blurred.shutter_close, 1.25f);
+  const float times[3] = {0.75f, 1.0f, 1.25f};
+  int moving = 0;
+  for (std::size_t i = 0; i < blurred.instances.size(); ++i) {
+    const Instance& inst = blurred.instances[i];
+    moving += !inst.motion.empty();
+    for (int k = 0; k < 3; ++k) {
+      const Instance posed = load_gltf(box, {"", "", "", times[k]}).scene.instances.at(i);
+      EXPECT_EQ(k == 0 ? inst.object_to_world : inst.motion.empty() ? inst.object_to_world : inst.motion[k - 1],
+                posed.object_to_world) << "instance " << i << " step " << k;
+    }
+  }
+  EXPECT_GT(moving, 0);
+  EXPECT_LT(moving, static_cast<int>(blurred.instances.size()));  // the inner box stands still
+
+  const std::string skin = test::scene_path("khronos/SimpleSkin/glTF/SimpleSkin.gltf");
+  GltfLoadParams skin_params{"", "", "", 0.5f};
+  skin_params.shutter_close = 0.5f, skin_params.motion_steps = 2;
+  const SceneDescription bent = load_gltf(skin, skin_params).scene;
+  const TriangleMesh& m = bent.meshes.at(0).primitives.at(0);
+  ASSERT_EQ(m.motion_positions.size(), 1u);
+  EXPECT_EQ(m.positions, load_gltf(skin, {"", "", "", 0.5f}).scene.meshes[0].primitives[0].positions);
+  EXPECT_EQ(m.motion_positions[0], load_gltf(skin, {"", "", "", 1.0f}).scene.meshes[0].primitives[0].positions);
+  // The bounds hold every step: the tip (-0.5, 2) turned 45 degrees about (0, 1) reaches
+  // x = -0.5 cos 45 - sin 45 = -1.0607, further out than at 90 degrees (-1).
+  EXPECT_NEAR(bent.bounds.lo.x, -0.5f * std::cos(0.7854f) - std::sin(0.7854f), 2e-3f);
+}
+
+}  // namespace
+}  // namespace tessera

@@ -88,6 +88,8 @@ const Sample kSamples[] = {
     {"BoxAnimated/glTF-Binary/BoxAnimated.glb", 254, 254, 2, 2, 0, {-0.5, -0.5, -0.5}, {0.5, 0.5, 0.5}},
     {"BoxTextured/glTF-Binary/BoxTextured.glb", 12, 12, 1, 1, 0, {-0.5, -0.5, -0.5}, {0.5, 0.5, 0.5}},
     {"Cameras/glTF/Cameras.gltf", 2, 2, 1, 1, 2, {0, 0, -0.7075903}, {1, 0.7066229, 0}},
+    // Skinned: posed at time 0 by their animations, the bounds those of the skinned vertices.
+    {"CesiumMan/glTF-Binary/CesiumMan.glb", 4672, 4672, 1, 1, 0, {-0.3105088, -0.01064529, -0.4465939}, {0.1946552, 1.44716, 0.4498944}},
     {"ClearCoatTest/glTF-Binary/ClearCoatTest.glb", 37116, 37116, 27, 27, 0, {-7.357803, -6.25, -0.06000001}, {3.1, 6.854517, 1.05}},
     {"CornellBox/glTF/cornellBox.gltf", 16720, 16732, 9, 10, 1, {-5.05, -5.05, -5.05}, {5.05, 5.05, 5}},
     {"DamagedHelmet/glTF-Binary/DamagedHelmet.glb", 15452, 15452, 1, 1, 0, {-0.9474586, -0.9009739, -1.187155}, {0.9424954, 0.900995, 0.8128451}},
@@ -100,7 +102,9 @@ const Sample kSamples[] = {
     {"MultiUVTest/glTF-Binary/MultiUVTest.glb", 12, 12, 1, 1, 1, {-1, -1, -1}, {1, 1, 1.000001}},
     {"NegativeScaleTest/glTF-Binary/NegativeScaleTest.glb", 3884, 7724, 8, 11, 0, {-5.161674, -4.45354, -0.5}, {5.161674, 4.45354, 0.5}},
     {"OrientationTest/glTF-Binary/OrientationTest.glb", 524, 524, 13, 13, 0, {-5.330651, -5.330651, -5.330651}, {5.330651, 5.330651, 5.330651}},
+    {"RiggedSimple/glTF-Binary/RiggedSimple.glb", 188, 188, 1, 1, 0, {-1, -4.575077, -1}, {1, 4.575078, 0.9999996}},
     {"SimpleMorph/glTF/SimpleMorph.gltf", 1, 1, 1, 1, 0, {0, 0, 0}, {1, 0.5, 0}},  // weights 0, 0 at time 0
+    {"SimpleSkin/glTF/SimpleSkin.gltf", 8, 8, 1, 1, 0, {-0.5, 0, 0}, {0.5, 2, 0}},  // bind pose at time 0
     {"SimpleSparseAccessor/glTF/SimpleSparseAccessor.gltf", 12, 12, 1, 1, 0, {0, 0, 0}, {6, 4, 0}},
     {"TextureCoordinateTest/glTF-Binary/TextureCoordinateTest.glb", 10, 10, 5, 5, 0, {-1.2, -1.2, -0.05259115}, {1.2, 1.2, 5.255118e-07}},
     {"TextureSettingsTest/glTF-Binary/TextureSettingsTest.glb", 72, 72, 10, 10, 0, {-5.161674, -5.618556, -0.1500004}, {5.161674, 4.453537, 0.1000003}},
@@ -399,20 +403,6 @@ TEST_F(GltfLoaderComponentTypes, IndicesOfEveryUnsignedType) {
 
 // ---- files built in memory --------------------------------------------------------------
 
-std::string base64(const std::vector<std::uint8_t>& bytes) {
-  static const char* kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  for (std::size_t i = 0; i < bytes.size(); i += 3) {
-    const std::uint32_t n = bytes[i] << 16 | (i + 1 < bytes.size() ? bytes[i + 1] << 8 : 0) |
-                            (i + 2 < bytes.size() ? bytes[i + 2] : 0);
-    out += kAlphabet[n >> 18 & 63];
-    out += kAlphabet[n >> 12 & 63];
-    out += i + 1 < bytes.size() ? kAlphabet[n >> 6 & 63] : '=';
-    out += i + 2 < bytes.size() ? kAlphabet[n & 63] : '=';
-  }
-  return out;
-}
-
 // A one-triangle glTF (no indices) whose three positions are `xyz`.
 std::vector<std::uint8_t> triangle_gltf(const std::vector<float>& xyz) {
   std::vector<std::uint8_t> bin(xyz.size() * 4);
@@ -422,7 +412,7 @@ std::vector<std::uint8_t> triangle_gltf(const std::vector<float>& xyz) {
                            R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"}],)"
                            R"("bufferViews":[{"buffer":0,"byteLength":36}],)"
                            R"("buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,)" +
-                           base64(bin) + "\"}]}";
+                           test::base64(bin) + "\"}]}";
   return {json.begin(), json.end()};
 }
 

@@ -67,7 +67,7 @@ int add_mesh(SceneDescription& scene, TriangleMesh mesh, const std::vector<glm::
   scene.meshes.push_back(std::move(m));
   const int index = static_cast<int>(scene.meshes.size() - 1);
   for (const glm::mat4& t : placements) {
-    scene.instances.push_back({index, t, ""});
+    scene.instances.push_back({index, t, "", {}});
     for (const glm::vec3& p : scene.meshes[index].primitives[0].positions)
       scene.bounds.extend(glm::vec3(t * glm::vec4(p, 1.0f)));
   }

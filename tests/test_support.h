@@ -1,7 +1,9 @@
 // Shared helpers for the tests: paths, temporary directories, running the program.
 #pragma once
 
+#include <cstdint>
 #include <string>
+#include <vector>
 
 namespace tessera::test {
 
@@ -19,5 +21,8 @@ struct CommandResult {
 };
 // Runs a shell command line, capturing standard output and standard error.
 CommandResult run_command(const std::string& command_line);
+
+// Standard base64 (RFC 4648, padded): for glTF buffers built in memory as data URIs.
+std::string base64(const std::vector<std::uint8_t>& bytes);
 
 }  // namespace tessera::test
