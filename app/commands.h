@@ -29,6 +29,10 @@ struct RenderOptions {
   double time = 0.0;  // seconds: the scene's pose (--time)
   int frame = -1;  // --frame: time = frame / fps (-1: use --time)
   double fps = 24.0;
+  std::string frames;  // --frames FIRST:LAST[:STEP]; empty: one frame
+  bool skip_existing = false;
+  std::string shutter;  // --shutter OPEN,CLOSE in frames; empty: no motion blur
+  int motion_steps = 3;
   float aperture = 0.0f, focus_distance = 0.0f, fov = 0.0f;
   std::string background = "auto";
   std::string envmap;

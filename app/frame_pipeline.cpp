@@ -1,6 +1,7 @@
 #include "app/frame_pipeline.h"
 
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -36,20 +37,20 @@ vec3 parse_background(const std::string& text, bool scene_has_lights) {
 
 // Width, height and the camera: the chosen camera decides the aspect ratio before the size
 // is known.
-void plan_image(const RenderOptions& o, const SceneDescription& scene, FramePlan& plan) {
+void plan_image(const RenderOptions& o, const SceneDescription& scene, const Bounds3* framing, FramePlan& plan) {
   RenderSettings& s = plan.settings;
   s.width = o.width;
   s.height = o.height;
   const Camera* scene_camera = nullptr;
   Camera probe;
   if (!scene.cameras.empty() || !o.camera.empty()) {
-    probe = choose_camera(scene, o.camera, 16, 9);
+    probe = choose_camera(scene, o.camera, 16, 9, framing);
     scene_camera = &probe;
   }
   resolve_resolution(scene_camera, s.width, s.height);
   if (static_cast<double>(s.width) * s.height > (1u << 28))
     throw UsageError(fmt::format("--width {} --height {}: more than 268 million pixels", s.width, s.height));
-  plan.camera = choose_camera(scene, o.camera, s.width, s.height);
+  plan.camera = choose_camera(scene, o.camera, s.width, s.height, framing);
   plan.camera_params = {o.fov, o.aperture, o.focus_distance};
 }
 
@@ -85,17 +86,31 @@ float scene_time(const RenderOptions& o) {
   return static_cast<float>(o.frame >= 0 ? o.frame / o.fps : o.time);
 }
 
-LoadedScene load_scene(const RenderOptions& o) {
+Shutter parse_shutter(const RenderOptions& o) {
+  if (o.shutter.empty()) return {};
+  double open = 0.0, close = 0.0;
+  char tail;
+  if (std::sscanf(o.shutter.c_str(), "%lf,%lf%c", &open, &close, &tail) != 2 || !std::isfinite(open) ||
+      !std::isfinite(close) || open > close || close - open > 1e6)
+    throw UsageError("--shutter " + o.shutter + ": expected OPEN,CLOSE in frames with OPEN <= CLOSE, e.g. -0.25,0.25");
+  return {static_cast<float>(open / o.fps), static_cast<float>(close / o.fps)};
+}
+
+LoadedScene load_scene(const RenderOptions& o, const GltfDocument& document, bool print_warnings) {
   const auto start = std::chrono::steady_clock::now();
-  LoadedScene loaded{load_gltf(o.scene_path, {o.scene, o.variant, o.animation, scene_time(o)})};
-  for (const std::string& w : loaded.gltf.warnings) fmt::print(stderr, "tessera: warning: {}: {}\n", o.scene_path, w);
+  const Shutter shutter = parse_shutter(o);
+  GltfLoadParams params{o.scene, o.variant, o.animation, scene_time(o)};
+  if (shutter.on()) params.shutter_open = shutter.open, params.shutter_close = shutter.close, params.motion_steps = o.motion_steps;
+  LoadedScene loaded{convert_gltf(document, params)};
+  if (print_warnings)
+    for (const std::string& w : loaded.gltf.warnings) fmt::print(stderr, "tessera: warning: {}: {}\n", o.scene_path, w);
   for (const Mesh& m : loaded.gltf.scene.meshes)
     for (const TriangleMesh& p : m.primitives) loaded.triangles += p.triangle_count();
   loaded.seconds = seconds_since(start);
   return loaded;
 }
 
-FramePlan plan_frame(const RenderOptions& o, const GltfLoadResult& loaded) {
+FramePlan plan_frame(const RenderOptions& o, const GltfLoadResult& loaded, const Bounds3* framing) {
   const SceneDescription& scene = loaded.scene;
   FramePlan plan;
   if (loaded.material_variant >= 0) {
@@ -105,7 +120,7 @@ FramePlan plan_frame(const RenderOptions& o, const GltfLoadResult& loaded) {
   plan.animated = !loaded.playing.empty();
   plan.output = frame_output_path(o);
   plan.preview = o.preview;
-  plan_image(o, scene, plan);
+  plan_image(o, scene, framing, plan);
   plan_sampling(o, plan.settings);
   AovSelection& aovs = plan.settings.aovs;
   for (const std::string& a : o.aovs) {

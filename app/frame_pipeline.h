@@ -22,13 +22,21 @@ float scene_time(const RenderOptions& o);
 // Where -o goes: the option, else the resumed file, else SCENE_NAME.exr in the current directory.
 std::string frame_output_path(const RenderOptions& o);
 
-// Stage 1: the file, with its warnings printed.
+// --shutter OPEN,CLOSE (frames) in seconds: {0, 0} without it. Throws UsageError.
+struct Shutter {
+  float open = 0.0f, close = 0.0f;
+  bool on() const { return close > open; }
+};
+Shutter parse_shutter(const RenderOptions& o);
+
+// Stage 1: the frame's scene from the document read once (posed at scene_time(o), with the
+// shutter's motion), with the file's warnings printed when asked.
 struct LoadedScene {
   GltfLoadResult gltf;
   double seconds = 0.0;
   std::uint64_t triangles = 0;  // in the file's meshes, each counted once
 };
-LoadedScene load_scene(const RenderOptions& o);
+LoadedScene load_scene(const RenderOptions& o, const GltfDocument& document, bool print_warnings = true);
 
 // Stage 2: everything decided from the options and the scene before anything is built.
 // Throws UsageError for options the scene cannot satisfy.
@@ -45,7 +53,8 @@ struct FramePlan {
   std::string material_variant_name;
   bool animated = false;  // some animation posed the scene (at scene_time(o))
 };
-FramePlan plan_frame(const RenderOptions& o, const GltfLoadResult& loaded);
+// `framing`: the bounds the automatic camera frames instead of the scene's (null: the scene's).
+FramePlan plan_frame(const RenderOptions& o, const GltfLoadResult& loaded, const Bounds3* framing = nullptr);
 
 // Stage 3: the BVH, textures and lights (the description is moved in), and the camera.
 struct BuiltFrame {

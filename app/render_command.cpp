@@ -1,5 +1,6 @@
 // tessera render: glTF in, HDR OpenEXR (and an optional preview) out.
 #include <algorithm>
+#include <chrono>
 #include <filesystem>
 
 #include <fmt/format.h>
@@ -7,13 +8,10 @@
 #include "app/commands.h"
 #include "app/exit_codes.h"
 #include "app/frame_pipeline.h"
-#include "app/interrupt.h"
-#include "app/profile_outputs.h"
+#include "app/frame_sequence.h"
 #include "app/progress.h"
-#include "app/resume_settings.h"
-#include "renderer/image_output.h"
+#include "app/render_job.h"
 #include "renderer/render.h"
-#include "renderer/resume_layers.h"
 
 namespace tessera {
 
@@ -72,9 +70,27 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
                   "Which glTF animations play: a name, an index, all, or none [default: all, together, as viewers play them]");
   auto* time = cmd->add_option("--time", o.time, "Scene time in seconds at which animated nodes are posed [default: 0]")
                    ->check(CLI::Range(-1e7, 1e7));
-  cmd->add_option("--frame", o.frame, "Frame number: the scene time is FRAME / --fps")
-      ->check(CLI::Range(0, 100000000))->excludes(time);
-  cmd->add_option("--fps", o.fps, "Frames per second for --frame")->check(CLI::Range(1e-3, 1e6))->capture_default_str();
+  auto* frame = cmd->add_option("--frame", o.frame, "Frame number: the scene time is FRAME / --fps (a # run in -o becomes it)")
+                    ->check(CLI::Range(0, 100000000))->excludes(time);
+  cmd->add_option("--frames", o.frames,
+                  "Render frames FIRST to LAST (every STEP-th) as a sequence: -o's run of # becomes each frame's "
+                  "number, zero-padded (shot.####.exr; without #, .#### goes before the extension); --preview and "
+                  "the profile outputs are numbered alike. The file is read once; the automatic camera frames the "
+                  "whole animation")
+                     ->excludes(time)->excludes(frame);
+  cmd->add_flag("--skip-existing", o.skip_existing,
+                "With --frames (or --frame): a frame whose output exists is skipped, except a partial EXR "
+                "(interrupted, time-limited), which is continued where it stopped. Rerun an interrupted "
+                "sequence this way (render-farm friendly)");
+  cmd->add_option("--fps", o.fps, "Frames per second for --frame, --frames and --shutter")
+      ->check(CLI::Range(1e-3, 1e6))->capture_default_str();
+  cmd->add_option("--shutter", o.shutter,
+                  "Motion blur: the shutter is open from OPEN to CLOSE frames around the frame's time, e.g. "
+                  "-0.25,0.25 (a 180-degree shutter); each sample sees the scene at a time in it [default: no blur]");
+  cmd->add_option("--motion-steps", o.motion_steps,
+                  "Motion blur: times across the shutter at which moving objects, deforming meshes and the camera "
+                  "are described (Embree interpolates between them)")
+      ->check(CLI::Range(2, 129))->capture_default_str();
   cmd->add_option("--aperture", o.aperture, "Thin-lens aperture diameter in scene units (0: pinhole)")
       ->check(CLI::Range(0.0f, 1e6f))->capture_default_str();
   cmd->add_option("--focus-distance", o.focus_distance,
@@ -143,116 +159,64 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
 
 namespace {
 
-// "62% of pixels converged": how much adaptive sampling saved, and where the counts ended.
-void print_adaptive_summary(const RenderSettings& settings, const RenderResult& result) {
-  const FilmState& film = result.film;
-  std::uint64_t total = 0;
-  std::uint32_t most = 0;
-  for (std::uint32_t n : film.samples) {
-    total += n;
-    most = std::max(most, n);
-  }
-  const double pixels = static_cast<double>(film.pixel_count());
-  fmt::print(stderr,
-             "tessera: noise threshold {}, min spp {}: {:.0f}% of pixels converged; {:.1f} spp on average "
-             "(fewest {}, most {}), {:.0f}% of the samples of {} spp everywhere\n",
-             settings.adaptive.threshold, adaptive_min_spp(settings.adaptive, settings.spp),
-             100.0 * result.stats.converged_pixels / pixels, total / pixels, result.image.samples_per_pixel, most,
-             100.0 * total / (pixels * settings.spp), settings.spp);
-}
+// The frames to render, each with its own options: --frames, else the one frame asked for.
+struct PlannedFrame {
+  RenderOptions options;
+  std::string label;
+};
 
-void print_summary(const RenderOptions& o, const std::string& output, const RenderSettings& settings,
-                   const RenderResult& result) {
-  const RenderStats& s = result.stats;
-  const int spp = result.image.samples_per_pixel;
-  fmt::print(stderr,
-             "tessera: {}x{}, {} spp, {} threads, tile {}: {:.3f} M samples/s, {:.3f} M rays/s; {} {}: "
-             "efficiency {:.1f}%, imbalance {:.2f}{}\n",
-             settings.width, settings.height, spp, s.threads, settings.tile_size, s.camera_samples / s.seconds * 1e-6,
-             s.rays / s.seconds * 1e-6, scheduler_name(settings.scheduler), tile_order_name(settings.tile_order),
-             100.0 * s.efficiency, s.imbalance,
-             s.dropped_samples ? fmt::format(", {} non-finite samples dropped", s.dropped_samples) : "");
-  if (settings.adaptive.on()) print_adaptive_summary(settings, result);
-  std::string why;
-  if (s.cancelled) why = fmt::format("interrupted at {} spp; ", spp);
-  else if (s.time_limited) why = fmt::format("time limit reached at {} spp; ", spp);
-  if (s.resumed_samples > 0) why = fmt::format("resumed {}; ", o.resume) + why;
-  if (spp == 0)
-    fmt::print(stderr, "tessera: interrupted before every pixel had a sample: {} not written\n", output);
-  else
-    fmt::print(stderr, "tessera: {}wrote {}{}\n", why, output, o.preview.empty() ? "" : " and " + o.preview);
+std::vector<PlannedFrame> plan_frames(const RenderOptions& o) {
+  if (o.frames.empty()) {
+    RenderOptions one = o;
+    one.output = frame_output_path(o);
+    if (o.frame >= 0 && has_frame_number(one.output)) one.output = numbered_path(one.output, o.frame);
+    return {{one, ""}};
+  }
+  const std::vector<int> numbers = frame_numbers(parse_frame_range(o.frames));
+  std::vector<PlannedFrame> frames;
+  for (std::size_t i = 0; i < numbers.size(); ++i) {
+    RenderOptions f = o;
+    f.frame = numbers[i];
+    f.output = numbered_path(frame_output_path(o), numbers[i]);
+    if (!o.preview.empty()) f.preview = numbered_path(o.preview, numbers[i]);
+    for (std::string* profile : {&f.stats_json, &f.trace, &f.heatmap})
+      if (!profile->empty()) *profile = numbered_path(*profile, numbers[i]);
+    frames.push_back({std::move(f), fmt::format("frame {} ({} of {})", numbers[i], i + 1, numbers.size())});
+  }
+  return frames;
 }
 
 }  // namespace
 
 int run_render(const RenderOptions& o) {
-  // Every path and the resume file first: a bad one costs nothing.
-  check_output_path(frame_output_path(o));
-  std::string resumed_settings;
-  if (!o.resume.empty()) resumed_settings = read_resume_settings(o.resume);
-  if (!o.preview.empty()) check_output_path(o.preview);
-  const ProfileOutputs profile_outputs{o.stats_json, o.trace, o.heatmap};
-  check_profile_outputs(profile_outputs);
-
-  LoadedScene loaded = load_scene(o);
-  FramePlan plan = plan_frame(o, loaded.gltf);
-  const double load_seconds = loaded.seconds;
-  const std::uint64_t triangles = loaded.triangles;
-  const BuiltFrame built = build_frame(std::move(loaded), plan);
-  RenderSettings& settings = plan.settings;
-
-  const std::string resume_text = resume_settings(o, settings, built.camera, plan.environment,
-                                                  plan.material_variant, plan.material_variant_name);
-  FilmState resumed;
-  if (!o.resume.empty()) {
-    check_resume_settings(o.resume, resumed_settings, resume_text);
-    const int min_spp = settings.adaptive.on() ? adaptive_min_spp(settings.adaptive, settings.spp) : 0;
-    resumed = read_resume_film(o.resume, {settings.width, settings.height, settings.aovs, settings.spp, min_spp});
-  }
-  if (o.checkpoint > 0.0) {
-    settings.checkpoint_interval = o.checkpoint;
-    // A checkpoint that cannot be written (disk full) does not stop the render: the frame
-    // is still in memory, and the final write reports the error if it persists.
-    settings.on_checkpoint = [&](const Film& film, const RenderStats& stats) {
-      try {
-        RenderStats at_checkpoint = stats;
-        at_checkpoint.converged_pixels = film.converged_pixels();
-        FrameImage image = film.resolve();
-        finish_frame(plan, image, frame_write_params(o, plan, built.camera, at_checkpoint, true), film.state(),
-                     resume_text, false);
-      } catch (const OutputError& e) {
-        fmt::print(stderr, "tessera: warning: checkpoint not written: {}\n", e.what());
+  if (!o.frames.empty() && !o.resume.empty())
+    throw UsageError("--resume: continues one frame; a sequence continues its interrupted frame with --skip-existing");
+  std::vector<PlannedFrame> frames = plan_frames(o);
+  for (const PlannedFrame& f : frames) check_frame_files(f.options);  // a bad path costs nothing
+  const GltfDocument document = read_gltf(o.scene_path);
+  Bounds3 framing = animation_bounds(o, document);
+  const auto start = std::chrono::steady_clock::now();
+  int rendered = 0, skipped = 0;
+  for (PlannedFrame& f : frames) {
+    if (o.skip_existing) {
+      const ExistingFrame existing = existing_frame(f.options.output);
+      if (existing == ExistingFrame::Finished) {
+        if (!o.quiet)
+          fmt::print(stderr, "tessera: {}{} exists, skipped\n", f.label.empty() ? "" : f.label + ": ", f.options.output);
+        ++skipped;
+        continue;
       }
-    };
+      if (existing == ExistingFrame::Partial) f.options.resume = f.options.output;
+    }
+    const bool first = rendered == 0;
+    const FrameJobResult done = render_frame_job(f.options, {&document, framing.empty() ? nullptr : &framing, f.label, first});
+    ++rendered;
+    if (done.interrupted) return kExitInterrupted;
   }
-
-  RenderMonitor monitor;
-  InterruptHandler interrupts(monitor.cancel);  // stays installed while writing
-  RenderResult result;
-  {
-    const std::uint64_t total = o.resume.empty()
-                                    ? static_cast<std::uint64_t>(settings.width) * settings.height * settings.spp
-                                    : samples_left(resumed, settings.spp);
-    ProgressDisplay progress(monitor, {total, o.quiet, "", false, settings.adaptive.on()});
-    result = render_frame(*built.scene, built.camera, settings, &monitor, o.resume.empty() ? nullptr : &resumed);
-  }
-  if (plan.cost_layer) result.image.cost = tile_cost_image(result.profile);
-  write_profile_outputs(profile_outputs, result,
-                        fmt::format("{}: {}, {}, {} threads", std::filesystem::path(o.scene_path).filename().string(),
-                                    o.scheduler, o.tile_order, result.stats.threads));
-  double denoise_seconds = 0.0;
-  if (result.image.samples_per_pixel > 0) {
-    const bool partial = samples_left(result.film, settings.spp) > 0;  // done: converged, or at --spp
-    denoise_seconds = finish_frame(plan, result.image, frame_write_params(o, plan, built.camera, result.stats, partial),
-                                   result.film, resume_text, plan.denoise && !result.stats.cancelled);
-  }
-  if (!o.quiet) {
-    fmt::print(stderr, "tessera: {}: {} triangles; load {:.2f} s, BVH and textures {:.2f} s (BVH {:.2f} s), render {:.2f} s{}\n",
-               o.scene_path, triangles, load_seconds, built.seconds, built.scene->bvh_build_seconds, result.stats.seconds,
-               denoise_seconds > 0.0 ? fmt::format(", denoise {:.2f} s", denoise_seconds) : "");
-    print_summary(o, plan.output, settings, result);
-  }
-  return interrupts.interrupted() ? kExitInterrupted : kExitSuccess;
+  if (!o.quiet && !o.frames.empty())
+    fmt::print(stderr, "tessera: frames {}: {} rendered, {} skipped, {}\n", o.frames, rendered, skipped,
+               format_duration(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()));
+  return kExitSuccess;
 }
 
 }  // namespace tessera

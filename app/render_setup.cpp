@@ -10,8 +10,9 @@
 
 namespace tessera {
 
-Camera choose_camera(const SceneDescription& scene, const std::string& choice, int width, int height) {
-  if (choice.empty()) return scene.cameras.empty() ? auto_camera(scene.bounds, width, height) : scene.cameras[0];
+Camera choose_camera(const SceneDescription& scene, const std::string& choice, int width, int height,
+                     const Bounds3* framing) {
+  if (choice.empty()) return scene.cameras.empty() ? auto_camera(framing ? *framing : scene.bounds, width, height) : scene.cameras[0];
   for (const Camera& c : scene.cameras)
     if (c.name == choice) return c;
   const bool numeric = !choice.empty() && choice.size() < 9 && std::all_of(choice.begin(), choice.end(), ::isdigit);

@@ -12,8 +12,10 @@
 namespace tessera {
 
 // The camera named or numbered by `choice` (empty: the scene's first camera, else an
-// automatic one). Throws UsageError for a camera the scene does not have.
-Camera choose_camera(const SceneDescription& scene, const std::string& choice, int width, int height);
+// automatic one framing `framing`, or the scene's bounds when null). Throws UsageError for a
+// camera the scene does not have.
+Camera choose_camera(const SceneDescription& scene, const std::string& choice, int width, int height,
+                     const Bounds3* framing = nullptr);
 
 // Image size from the requested width/height (0 = not given) and the camera's aspect
 // ratio; 960 pixels wide when neither is given.

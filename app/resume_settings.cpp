@@ -78,6 +78,8 @@ std::string resume_settings(const RenderOptions& o, const RenderSettings& s, con
   // The pose: only when it differs from what frames had before animations (all at time 0).
   if (!o.animation.empty() && o.animation != "all") text += fmt::format("animation={}\n", o.animation);
   if (scene_time(o) != 0.0f) text += fmt::format("time={}\n", scene_time(o));
+  if (const Shutter shutter = parse_shutter(o); shutter.on())
+    text += fmt::format("shutter={},{}\nmotion-steps={}\n", shutter.open, shutter.close, o.motion_steps);
   // Only with adaptive sampling, so frames from before it still resume; the check below
   // compares both ways, so neither side can drop these lines unnoticed.
   if (s.adaptive.on())
@@ -89,7 +91,8 @@ namespace {
 
 // A line is left out when its setting is what frames had before the line existed.
 const std::pair<const char*, const char*> kUnwrittenDefaults[] = {
-    {"pixel-filter", "box 1"}, {"light-sampling", "mis"}, {"clamp", "0"}, {"animation", "all"}, {"time", "0"}};
+    {"pixel-filter", "box 1"}, {"light-sampling", "mis"}, {"clamp", "0"}, {"animation", "all"}, {"time", "0"},
+    {"shutter", "none"}, {"motion-steps", "1"}};
 
 std::string value_of(const std::vector<std::pair<std::string, std::string>>& lines, const std::string& key) {
   for (const auto& [k, v] : lines)

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "tests/exr_read.h"
 #include "tests/test_support.h"
 
 namespace tessera {
@@ -37,18 +38,13 @@ test::CommandResult interrupted_render(const std::string& out, const std::string
   return r;
 }
 
-int exr_int_attribute(const std::string& path, const char* name) {
-  Imf::InputFile file(path.c_str());
-  return file.header().typedAttribute<Imf::IntAttribute>(name).value();
-}
-
 TEST(Interrupt, FirstSignalWritesTheFinishedSamplesAndExits130) {
   const std::string out = test::make_temp_dir("interrupt-first") + "/frame.exr";
   const test::CommandResult r = interrupted_render(out, "kill -TERM $pid;", "--width 200 --tile-size 32");
   EXPECT_EQ(r.exit_code, 130) << r.err;
   ASSERT_TRUE(std::filesystem::exists(out)) << r.err;
-  EXPECT_EQ(exr_int_attribute(out, "partial"), 1);
-  const int spp = exr_int_attribute(out, "samplesPerPixel");
+  EXPECT_EQ(test::exr_int(out, "partial"), 1);
+  const int spp = test::exr_int(out, "samplesPerPixel");
   EXPECT_GT(spp, 0);
   EXPECT_LT(spp, 1000000);
   EXPECT_NE(r.err.find("interrupted at " + std::to_string(spp) + " spp"), std::string::npos) << r.err;

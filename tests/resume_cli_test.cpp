@@ -19,6 +19,7 @@
 #include <fstream>
 #include <thread>
 
+#include "tests/exr_read.h"
 #include "tests/test_support.h"
 
 namespace tessera {
@@ -35,25 +36,6 @@ test::CommandResult render(const std::string& scene, const std::string& args) {
 }
 
 std::string cornell() { return test::scene_path("cornell-box/cornell-box.gltf"); }
-
-std::vector<float> rgb_of(const std::string& path) {
-  Imf::InputFile file(path.c_str());
-  const Imath::Box2i dw = file.header().dataWindow();
-  const int w = dw.max.x + 1, h = dw.max.y + 1;
-  std::vector<float> px(static_cast<std::size_t>(3) * w * h);
-  Imf::FrameBuffer fb;
-  for (int c = 0; c < 3; ++c)
-    fb.insert(std::string(1, "RGB"[c]), Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(px.data() + c),
-                                                   3 * sizeof(float), 3 * sizeof(float) * w));
-  file.setFrameBuffer(fb);
-  file.readPixels(0, h - 1);
-  return px;
-}
-
-int int_attribute(const std::string& path, const char* name) {
-  Imf::InputFile file(path.c_str());
-  return file.header().typedAttribute<Imf::IntAttribute>(name).value();
-}
 
 // One FLOAT channel, e.g. the per-pixel counts `spp`.
 std::vector<float> channel_of(const std::string& path, const std::string& name) {
@@ -83,17 +65,17 @@ TEST(ResumeCli, TimeLimitedThenResumedIsTheSameBitForBit) {
   // The first wave always finishes; a limit of a millisecond stops right after it.
   r = render(cornell(), "-o " + quote(dir + "/part.exr") + kSettings + " --time-limit 0.001");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(int_attribute(dir + "/part.exr", "partial"), 1);
-  EXPECT_EQ(int_attribute(dir + "/part.exr", "targetSamplesPerPixel"), 40);
-  EXPECT_LT(int_attribute(dir + "/part.exr", "samplesPerPixel"), 40);
+  EXPECT_EQ(test::exr_int(dir + "/part.exr", "partial"), 1);
+  EXPECT_EQ(test::exr_int(dir + "/part.exr", "targetSamplesPerPixel"), 40);
+  EXPECT_LT(test::exr_int(dir + "/part.exr", "samplesPerPixel"), 40);
   EXPECT_TRUE(has_resume_data(dir + "/part.exr"));
 
   r = render(cornell(), "--resume " + quote(dir + "/part.exr") + " -o " + quote(dir + "/resumed.exr") + kSettings +
                             " --threads 1 --tile-size 13");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(int_attribute(dir + "/resumed.exr", "partial"), 0);
-  EXPECT_EQ(int_attribute(dir + "/resumed.exr", "samplesPerPixel"), 40);
-  const std::vector<float> whole = rgb_of(dir + "/whole.exr"), resumed = rgb_of(dir + "/resumed.exr");
+  EXPECT_EQ(test::exr_int(dir + "/resumed.exr", "partial"), 0);
+  EXPECT_EQ(test::exr_int(dir + "/resumed.exr", "samplesPerPixel"), 40);
+  const std::vector<float> whole = test::exr_rgb(dir + "/whole.exr"), resumed = test::exr_rgb(dir + "/resumed.exr");
   ASSERT_EQ(whole.size(), resumed.size());
   EXPECT_EQ(std::memcmp(whole.data(), resumed.data(), whole.size() * sizeof(float)), 0);
 }
@@ -105,8 +87,8 @@ TEST(ResumeCli, ResumeRewritesTheFileItContinuesByDefault) {
   const auto r = test::run_command("cd " + quote(dir) + " && " + quote(test::tessera_exe()) + " render " +
                                    quote(cornell()) + " --resume frame.exr" + kSettings);
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(int_attribute(part, "partial"), 0);
-  EXPECT_EQ(int_attribute(part, "samplesPerPixel"), 40);
+  EXPECT_EQ(test::exr_int(part, "partial"), 0);
+  EXPECT_EQ(test::exr_int(part, "samplesPerPixel"), 40);
 }
 
 class ResumeMismatch : public testing::Test {
@@ -198,12 +180,12 @@ TEST(ResumeCli, ACheckpointSurvivesAKillAndResumes) {
                                    quote(out) + " ] && break; sleep 0.1; done; sleep 0.5; kill -KILL $pid; wait $pid");
   EXPECT_EQ(r.exit_code, 137) << r.err;
   ASSERT_TRUE(fs::exists(out)) << r.err;
-  EXPECT_EQ(int_attribute(out, "partial"), 1);
+  EXPECT_EQ(test::exr_int(out, "partial"), 1);
   EXPECT_TRUE(has_resume_data(out));
-  const int spp = int_attribute(out, "samplesPerPixel");
+  const int spp = test::exr_int(out, "samplesPerPixel");
   const auto resumed = render(cornell(), "--resume " + quote(out) + long_render + " --time-limit 0.5");
   EXPECT_EQ(resumed.exit_code, 0) << resumed.err;
-  EXPECT_GT(int_attribute(out, "samplesPerPixel"), spp);
+  EXPECT_GT(test::exr_int(out, "samplesPerPixel"), spp);
 }
 
 // Adaptive sampling stopped by its time limit (after the first wave), resumed with other
@@ -217,11 +199,11 @@ TEST(ResumeCli, AdaptiveTimeLimitedThenResumedIsTheSameBitForBit) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   r = render(cornell(), "-o " + quote(dir + "/part.exr") + kAdaptive + " --time-limit 0.001");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(int_attribute(dir + "/part.exr", "partial"), 1);
+  EXPECT_EQ(test::exr_int(dir + "/part.exr", "partial"), 1);
   r = render(cornell(), "--resume " + quote(dir + "/part.exr") + " -o " + quote(dir + "/resumed.exr") + kAdaptive +
                             " --threads 1 --tile-size 7");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(int_attribute(dir + "/resumed.exr", "partial"), 0);
+  EXPECT_EQ(test::exr_int(dir + "/resumed.exr", "partial"), 0);
   for (const char* layer : {"R", "G", "B", "even.R", "odd.G", "spp"}) {
     const std::vector<float> whole = channel_of(dir + "/whole.exr", layer), resumed = channel_of(dir + "/resumed.exr", layer);
     EXPECT_EQ(std::memcmp(whole.data(), resumed.data(), whole.size() * sizeof(float)), 0) << layer;
@@ -238,12 +220,12 @@ TEST(AdaptiveCli, TheExrRecordsCountsAndThresholdAndTheSummaryTheConvergedShare)
   ASSERT_EQ(r.exit_code, 0) << r.err;
   Imf::InputFile file(out.c_str());
   EXPECT_FLOAT_EQ(file.header().typedAttribute<Imf::FloatAttribute>("noiseThreshold").value(), 0.05f);
-  EXPECT_EQ(int_attribute(out, "minSamplesPerPixel"), 8);
-  EXPECT_EQ(int_attribute(out, "partial"), 0);
+  EXPECT_EQ(test::exr_int(out, "minSamplesPerPixel"), 8);
+  EXPECT_EQ(test::exr_int(out, "partial"), 0);
   EXPECT_EQ(file.header().channels().findChannel("even.R"), nullptr);  // halves only when asked for
   const std::vector<float> spp = channel_of(out, "spp");
   const float fewest = *std::min_element(spp.begin(), spp.end());
-  EXPECT_EQ(fewest, static_cast<float>(int_attribute(out, "samplesPerPixel")));
+  EXPECT_EQ(fewest, static_cast<float>(test::exr_int(out, "samplesPerPixel")));
   EXPECT_EQ(fewest, 8.0f);  // the walls are smooth enough to stop at the minimum
   EXPECT_EQ(*std::max_element(spp.begin(), spp.end()), 64.0f);  // the noisiest need everything
   const long converged = std::count_if(spp.begin(), spp.end(), [](float n) { return n < 64.0f; });

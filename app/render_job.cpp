@@ -1,0 +1,154 @@
+#include "app/render_job.h"
+
+#include <algorithm>
+#include <filesystem>
+
+#include <fmt/format.h>
+
+#include "app/exit_codes.h"
+#include "app/frame_pipeline.h"
+#include "app/interrupt.h"
+#include "app/profile_outputs.h"
+#include "app/progress.h"
+#include "app/resume_settings.h"
+#include "renderer/image_output.h"
+#include "renderer/render.h"
+#include "renderer/resume_layers.h"
+
+namespace tessera {
+
+namespace {
+
+// "62% of pixels converged": how much adaptive sampling saved, and where the counts ended.
+void print_adaptive_summary(const RenderSettings& settings, const RenderResult& result) {
+  const FilmState& film = result.film;
+  std::uint64_t total = 0;
+  std::uint32_t most = 0;
+  for (std::uint32_t n : film.samples) {
+    total += n;
+    most = std::max(most, n);
+  }
+  const double pixels = static_cast<double>(film.pixel_count());
+  fmt::print(stderr,
+             "tessera: noise threshold {}, min spp {}: {:.0f}% of pixels converged; {:.1f} spp on average "
+             "(fewest {}, most {}), {:.0f}% of the samples of {} spp everywhere\n",
+             settings.adaptive.threshold, adaptive_min_spp(settings.adaptive, settings.spp),
+             100.0 * result.stats.converged_pixels / pixels, total / pixels, result.image.samples_per_pixel, most,
+             100.0 * total / (pixels * settings.spp), settings.spp);
+}
+
+void print_summary(const RenderOptions& o, const std::string& output, const RenderSettings& settings,
+                   const RenderResult& result) {
+  const RenderStats& s = result.stats;
+  const int spp = result.image.samples_per_pixel;
+  fmt::print(stderr,
+             "tessera: {}x{}, {} spp, {} threads, tile {}: {:.3f} M samples/s, {:.3f} M rays/s; {} {}: "
+             "efficiency {:.1f}%, imbalance {:.2f}{}\n",
+             settings.width, settings.height, spp, s.threads, settings.tile_size, s.camera_samples / s.seconds * 1e-6,
+             s.rays / s.seconds * 1e-6, scheduler_name(settings.scheduler), tile_order_name(settings.tile_order),
+             100.0 * s.efficiency, s.imbalance,
+             s.dropped_samples ? fmt::format(", {} non-finite samples dropped", s.dropped_samples) : "");
+  if (settings.adaptive.on()) print_adaptive_summary(settings, result);
+  std::string why;
+  if (s.cancelled) why = fmt::format("interrupted at {} spp; ", spp);
+  else if (s.time_limited) why = fmt::format("time limit reached at {} spp; ", spp);
+  if (s.resumed_samples > 0) why = fmt::format("resumed {}; ", o.resume) + why;
+  if (spp == 0)
+    fmt::print(stderr, "tessera: interrupted before every pixel had a sample: {} not written\n", output);
+  else
+    fmt::print(stderr, "tessera: {}wrote {}{}\n", why, output, o.preview.empty() ? "" : " and " + o.preview);
+}
+
+}  // namespace
+
+std::string check_frame_files(const RenderOptions& o) {
+  check_output_path(frame_output_path(o));
+  std::string resumed_settings;
+  if (!o.resume.empty()) resumed_settings = read_resume_settings(o.resume);
+  if (!o.preview.empty()) check_output_path(o.preview);
+  check_profile_outputs({o.stats_json, o.trace, o.heatmap});
+  return resumed_settings;
+}
+
+FrameJobResult render_frame_job(const RenderOptions& o, const FrameJob& job) {
+  const std::string resumed_settings = check_frame_files(o);
+  const ProfileOutputs profile_outputs{o.stats_json, o.trace, o.heatmap};
+
+  LoadedScene loaded = load_scene(o, *job.document, job.print_warnings);
+  FramePlan plan = plan_frame(o, loaded.gltf, job.framing);
+  const double load_seconds = loaded.seconds;
+  const std::uint64_t triangles = loaded.triangles;
+  const BuiltFrame built = build_frame(std::move(loaded), plan);
+  RenderSettings& settings = plan.settings;
+
+  const std::string resume_text = resume_settings(o, settings, built.camera, plan.environment,
+                                                  plan.material_variant, plan.material_variant_name);
+  FilmState resumed;
+  if (!o.resume.empty()) {
+    check_resume_settings(o.resume, resumed_settings, resume_text);
+    const int min_spp = settings.adaptive.on() ? adaptive_min_spp(settings.adaptive, settings.spp) : 0;
+    resumed = read_resume_film(o.resume, {settings.width, settings.height, settings.aovs, settings.spp, min_spp});
+  }
+  if (o.checkpoint > 0.0) {
+    settings.checkpoint_interval = o.checkpoint;
+    // A checkpoint that cannot be written (disk full) does not stop the render: the frame
+    // is still in memory, and the final write reports the error if it persists.
+    settings.on_checkpoint = [&](const Film& film, const RenderStats& stats) {
+      try {
+        RenderStats at_checkpoint = stats;
+        at_checkpoint.converged_pixels = film.converged_pixels();
+        FrameImage image = film.resolve();
+        finish_frame(plan, image, frame_write_params(o, plan, built.camera, at_checkpoint, true), film.state(),
+                     resume_text, false);
+      } catch (const OutputError& e) {
+        fmt::print(stderr, "tessera: warning: checkpoint not written: {}\n", e.what());
+      }
+    };
+  }
+
+  RenderMonitor monitor;
+  InterruptHandler interrupts(monitor.cancel);  // stays installed while writing
+  RenderResult result;
+  {
+    const std::uint64_t total = o.resume.empty()
+                                    ? static_cast<std::uint64_t>(settings.width) * settings.height * settings.spp
+                                    : samples_left(resumed, settings.spp);
+    ProgressDisplay progress(monitor, {total, o.quiet, job.label.empty() ? "" : job.label + ": ", false,
+                                       settings.adaptive.on()});
+    result = render_frame(*built.scene, built.camera, settings, &monitor, o.resume.empty() ? nullptr : &resumed);
+  }
+  if (plan.cost_layer) result.image.cost = tile_cost_image(result.profile);
+  write_profile_outputs(profile_outputs, result,
+                        fmt::format("{}: {}, {}, {} threads", std::filesystem::path(o.scene_path).filename().string(),
+                                    o.scheduler, o.tile_order, result.stats.threads));
+  double denoise_seconds = 0.0;
+  if (result.image.samples_per_pixel > 0) {
+    const bool partial = samples_left(result.film, settings.spp) > 0;  // done: converged, or at --spp
+    denoise_seconds = finish_frame(plan, result.image, frame_write_params(o, plan, built.camera, result.stats, partial),
+                                   result.film, resume_text, plan.denoise && !result.stats.cancelled);
+  }
+  if (!o.quiet) {
+    fmt::print(stderr, "tessera: {}: {} triangles; load {:.2f} s, BVH and textures {:.2f} s (BVH {:.2f} s), render {:.2f} s{}\n",
+               o.scene_path, triangles, load_seconds, built.seconds, built.scene->bvh_build_seconds, result.stats.seconds,
+               denoise_seconds > 0.0 ? fmt::format(", denoise {:.2f} s", denoise_seconds) : "");
+    print_summary(o, plan.output, settings, result);
+  }
+  return {interrupts.interrupted()};
+}
+
+Bounds3 animation_bounds(const RenderOptions& o, const GltfDocument& document) {
+  GltfLoadParams params{o.scene, o.variant, o.animation, 0.0f};
+  const GltfLoadResult first = convert_gltf(document, params);
+  Bounds3 bounds;
+  if (first.playing.empty()) return bounds;
+  float start = first.animations[first.playing[0]].start, end = first.animations[first.playing[0]].end;
+  for (int a : first.playing) start = std::min(start, first.animations[a].start), end = std::max(end, first.animations[a].end);
+  constexpr int kTimes = 33;
+  for (int i = 0; i < kTimes; ++i) {
+    params.time = start + (end - start) * static_cast<float>(i) / (kTimes - 1);
+    bounds.extend(convert_gltf(document, params).scene.bounds);
+  }
+  return bounds;
+}
+
+}  // namespace tessera

@@ -1,0 +1,36 @@
+#include "tests/exr_read.h"
+
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFloatAttribute.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfIntAttribute.h>
+
+namespace tessera::test {
+
+std::vector<float> exr_rgb(const std::string& path) {
+  Imf::InputFile file(path.c_str());
+  const Imath::Box2i dw = file.header().dataWindow();
+  const int w = dw.max.x + 1, h = dw.max.y + 1;
+  std::vector<float> px(static_cast<std::size_t>(3) * w * h);
+  Imf::FrameBuffer fb;
+  for (int c = 0; c < 3; ++c)
+    fb.insert(std::string(1, "RGB"[c]), Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(px.data() + c),
+                                                   3 * sizeof(float), 3 * sizeof(float) * w));
+  file.setFrameBuffer(fb);
+  file.readPixels(0, h - 1);
+  return px;
+}
+
+int exr_int(const std::string& path, const char* attribute) {
+  Imf::InputFile file(path.c_str());
+  return file.header().typedAttribute<Imf::IntAttribute>(attribute).value();
+}
+
+float exr_float(const std::string& path, const char* attribute) {
+  Imf::InputFile file(path.c_str());
+  return file.header().typedAttribute<Imf::FloatAttribute>(attribute).value();
+}
+
+}  // namespace tessera::test

@@ -1,0 +1,13 @@
+// Reading what tessera wrote, for the tests: the RGB pixels and header attributes of an EXR.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace tessera::test {
+
+std::vector<float> exr_rgb(const std::string& path);  // interleaved R, G, B, top row first
+int exr_int(const std::string& path, const char* attribute);
+float exr_float(const std::string& path, const char* attribute);
+
+}  // namespace tessera::test

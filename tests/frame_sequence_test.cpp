@@ -1,0 +1,109 @@
+// Frame sequences (app/frame_sequence.*, tessera render --frames): the numbered names, the
+// frames' headers, --skip-existing, and an interrupted sequence continued to the same bits.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include "app/exit_codes.h"
+#include "app/frame_sequence.h"
+#include "tests/exr_read.h"
+#include "tests/test_support.h"
+
+namespace tessera {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string quote(const std::string& s) { return "'" + s + "'"; }
+
+test::CommandResult render(const std::string& args) {
+  const std::string scene = test::scene_path("khronos/BoxAnimated/glTF-Binary/BoxAnimated.glb");
+  return test::run_command("timeout 300 " + quote(test::tessera_exe()) + " render " + quote(scene) +
+                           " --width 48 --spp 16 --seed 3 " + args);
+}
+
+std::set<std::string> files_in(const std::string& dir) {
+  std::set<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir)) names.insert(e.path().filename().string());
+  return names;
+}
+
+TEST(FrameSequence, RangesAndNames) {
+  EXPECT_EQ(frame_numbers(parse_frame_range("3:9:3")), (std::vector<int>{3, 6, 9}));
+  EXPECT_EQ(frame_numbers(parse_frame_range("1:4")), (std::vector<int>{1, 2, 3, 4}));
+  EXPECT_EQ(frame_numbers(parse_frame_range("5:10:4")), (std::vector<int>{5, 9}));
+  for (const char* bad : {"", "3", "9:3", "-1:4", "1:4:0", "1:4:x", "1:4:2:1", "a:b"})
+    EXPECT_THROW(parse_frame_range(bad), UsageError) << bad;
+  EXPECT_EQ(numbered_path("out/shot.####.exr", 7), "out/shot.0007.exr");
+  EXPECT_EQ(numbered_path("shot.exr", 7), "shot.0007.exr");
+  EXPECT_EQ(numbered_path("a#/take_##_v#.png", 12), "a#/take_12_v12.png");  // only the file name's runs
+  EXPECT_EQ(numbered_path("shot.##.exr", 12345), "shot.12345.exr");  // longer numbers are not cut
+}
+
+// Exactly the frames asked for, each a complete EXR with its frame number and scene time.
+TEST(FrameSequence, WritesExactlyTheNumberedFrames) {
+  const std::string dir = test::make_temp_dir("frame-sequence-names");
+  const auto r = render("--frames 3:9:3 --fps 12 -q -o " + quote(dir + "/shot.####.exr"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(files_in(dir), (std::set<std::string>{"shot.0003.exr", "shot.0006.exr", "shot.0009.exr"}));
+  for (int f : {3, 6, 9}) {
+    const std::string path = dir + "/shot.000" + std::to_string(f) + ".exr";
+    EXPECT_EQ(test::exr_int(path, "frame"), f);
+    EXPECT_FLOAT_EQ(test::exr_float(path, "sceneTime"), f / 12.0f);
+    EXPECT_EQ(test::exr_int(path, "partial"), 0);
+  }
+  // A frame of the sequence is the same frame rendered alone with --frame.
+  const auto one = render("--frame 6 --fps 12 -q -o " + quote(dir + "/alone.exr"));
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  const std::vector<float> a = test::exr_rgb(dir + "/alone.exr"), b = test::exr_rgb(dir + "/shot.0006.exr");
+  ASSERT_EQ(a.size(), b.size());
+  EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(float)), 0);
+}
+
+// What an interrupted sequence leaves: frames 0 and 1 finished, frame 2 partial (stopped after
+// its first sample wave), frame 3 never started; and a stranger file standing for frame 4.
+// Rerun with --skip-existing, frames 0, 1 and 4 are kept, 2 continues, 3 renders: every frame
+// is then the same bit for bit as in a sequence that ran straight through.
+TEST(FrameSequence, AnInterruptedSequenceContinuesToTheSameBits) {
+  const std::string whole = test::make_temp_dir("frame-sequence-whole"), cut = test::make_temp_dir("frame-sequence-cut");
+  ASSERT_EQ(render("--frames 0:3 -q -o " + quote(whole + "/f.#.exr")).exit_code, 0);
+  ASSERT_EQ(render("--frames 0:1 -q -o " + quote(cut + "/f.#.exr")).exit_code, 0);
+  ASSERT_EQ(render("--frames 2:2 -q --time-limit 0.001 -o " + quote(cut + "/f.#.exr")).exit_code, 0);
+  ASSERT_EQ(test::exr_int(cut + "/f.2.exr", "partial"), 1) << "frame 2 was not left partial: nothing to test";
+  { std::ofstream(cut + "/f.4.exr") << "not a frame"; }
+  const auto before = fs::last_write_time(cut + "/f.0.exr");
+
+  const auto r = render("--frames 0:4 --skip-existing --threads 1 --tile-size 8 -o " + quote(cut + "/f.#.exr"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("frame 0 (1 of 5): " + cut + "/f.0.exr exists, skipped"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("resumed " + cut + "/f.2.exr"), std::string::npos) << r.err;
+  EXPECT_EQ(fs::last_write_time(cut + "/f.0.exr"), before);
+  std::ifstream stranger(cut + "/f.4.exr");
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(stranger), {}), "not a frame");
+  for (int f = 0; f < 4; ++f) {
+    const std::string name = "/f." + std::to_string(f) + ".exr";
+    EXPECT_EQ(test::exr_int(cut + name, "partial"), 0) << name;
+    const std::vector<float> a = test::exr_rgb(whole + name), b = test::exr_rgb(cut + name);
+    ASSERT_EQ(a.size(), b.size());
+    EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(float)), 0) << name;
+  }
+}
+
+TEST(FrameSequence, BadRangesAndCombinationsAreRefused) {
+  const std::string dir = test::make_temp_dir("frame-sequence-bad");
+  auto r = render("--frames 5:2 -o " + quote(dir + "/f.#.exr"));
+  EXPECT_EQ(r.exit_code, kExitBadInput);
+  EXPECT_NE(r.err.find("--frames 5:2: expected FIRST:LAST"), std::string::npos) << r.err;
+  r = render("--frames 1:2 --time 3 -o " + quote(dir + "/f.#.exr"));
+  EXPECT_EQ(r.exit_code, kExitBadInput) << r.err;
+  r = render("--frames 1:2 --shutter 0.5,0.25 -o " + quote(dir + "/f.#.exr"));
+  EXPECT_EQ(r.exit_code, kExitBadInput);
+  EXPECT_NE(r.err.find("--shutter 0.5,0.25: expected OPEN,CLOSE"), std::string::npos) << r.err;
+  EXPECT_TRUE(files_in(dir).empty());
+}
+
+}  // namespace
+}  // namespace tessera
