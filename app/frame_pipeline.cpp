@@ -175,6 +175,10 @@ ImageWriteParams frame_write_params(const RenderOptions& o, const FramePlan& pla
   meta.material_variant = plan.material_variant_name;
   meta.animated = plan.animated;
   meta.scene_time = scene_time(o);
+  if (const Shutter shutter = parse_shutter(o); shutter.on()) {
+    meta.shutter_open = meta.scene_time + shutter.open;
+    meta.shutter_close = meta.scene_time + shutter.close;
+  }
   if (o.frame >= 0) {
     meta.frame = o.frame;
     meta.frames_per_second = static_cast<float>(o.fps);

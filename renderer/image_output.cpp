@@ -130,6 +130,10 @@ void write_exr(const std::string& path, const FrameImage& img, const ImageWriteP
   if (!m.camera_name.empty()) header.insert("camera", Imf::StringAttribute(m.camera_name));
   if (!m.material_variant.empty()) header.insert("materialVariant", Imf::StringAttribute(m.material_variant));
   if (m.animated) header.insert("sceneTime", Imf::FloatAttribute(m.scene_time));
+  if (m.shutter_open < m.shutter_close) {  // motion blur: what the samples' times spanned
+    header.insert("shutterOpen", Imf::FloatAttribute(m.shutter_open));
+    header.insert("shutterClose", Imf::FloatAttribute(m.shutter_close));
+  }
   if (m.frame >= 0) {
     header.insert("frame", Imf::IntAttribute(m.frame));
     header.insert("framesPerSecond", Imf::FloatAttribute(m.frames_per_second));

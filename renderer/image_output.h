@@ -41,6 +41,7 @@ struct FrameMetadata {
   float scene_time = 0.0f;  // seconds
   int frame = -1;  // --frame (-1: not given, not written), with frames_per_second
   float frames_per_second = 0.0f;
+  float shutter_open = 0.0f, shutter_close = 0.0f;  // scene seconds; written when open < close
   bool partial = false;  // stopped early: samplesPerPixel tells how far it got
   int target_spp = 0;  // --spp: what a finished render reaches (0: not written)
   float noise_threshold = 0.0f;  // adaptive sampling (0: off, not written)
