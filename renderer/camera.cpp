@@ -6,7 +6,7 @@
 
 namespace tessera {
 
-Ray RenderCamera::generate_ray(const vec2& film, const vec2& lens) const {
+Ray RenderCamera::generate_ray(const vec2& film, const vec2& lens, float time) const {
   // Screen point in camera space on the plane z = -1 (perspective) or z = 0 (orthographic).
   const vec2 ndc(2.0f * film.x - 1.0f, 1.0f - 2.0f * film.y);
   vec3 origin(0.0f), dir;
@@ -27,8 +27,10 @@ Ray RenderCamera::generate_ray(const vec2& film, const vec2& lens) const {
   Ray ray;
   ray.tmin = znear > 0.0f ? znear / axial : 0.0f;
   ray.tmax = zfar > znear && zfar > 0.0f ? zfar / axial : std::numeric_limits<float>::infinity();
-  ray.origin = vec3(camera_to_world * vec4(origin, 1.0f));
-  ray.direction = glm::normalize(vec3(camera_to_world * vec4(dir, 0.0f)));
+  const glm::mat4 to_world = camera_to_world_at(time);
+  ray.origin = vec3(to_world * vec4(origin, 1.0f));
+  ray.direction = glm::normalize(vec3(to_world * vec4(dir, 0.0f)));
+  ray.time = time;
   return ray;
 }
 
@@ -50,6 +52,11 @@ RenderCamera make_camera(const Camera& cam, int width, int height, const CameraP
   RenderCamera rc;
   rc.projection = cam.projection;
   rc.camera_to_world = cam.camera_to_world;
+  if (std::any_of(cam.motion.begin(), cam.motion.end(), [&](const glm::mat4& m) { return m != cam.camera_to_world; })) {
+    std::vector<glm::mat4> steps{cam.camera_to_world};
+    steps.insert(steps.end(), cam.motion.begin(), cam.motion.end());
+    rc.motion = MotionTransform(steps);
+  }
   rc.aspect = static_cast<float>(width) / static_cast<float>(height);
   const float yfov = params.fov_degrees > 0.0f ? glm::radians(params.fov_degrees) : cam.yfov;
   rc.tan_half_fov_y = std::tan(0.5f * yfov);

@@ -1,7 +1,9 @@
 // The render camera: a glTF perspective or orthographic camera (or an automatic one that
-// frames the scene), with an optional thin lens for depth of field.
+// frames the scene), with an optional thin lens for depth of field, moving or not while the
+// shutter is open.
 #pragma once
 
+#include "renderer/motion.h"
 #include "renderer/ray.h"
 #include "renderer/scene/scene.h"
 
@@ -15,22 +17,30 @@ struct CameraParams {
 
 struct RenderCamera {
   Camera::Projection projection = Camera::Projection::Perspective;
-  glm::mat4 camera_to_world{1.0f};
+  glm::mat4 camera_to_world{1.0f};  // at the shutter's opening
+  // A camera that moves while the shutter is open: its camera_to_world at each motion step,
+  // position linear and rotation by slerp in between. Empty: it stands still.
+  MotionTransform motion;
   float tan_half_fov_y = 0.0f;  // perspective
   float half_height = 1.0f;  // orthographic: ymag
   float aspect = 1.0f;  // image width / height
   float lens_radius = 0.0f, focus_distance = 1.0f;
   float znear = 0.0f, zfar = 0.0f;
 
-  // film: position on the image in [0,1]^2, (0,0) the top-left corner; lens in [0,1)^2.
-  Ray generate_ray(const vec2& film, const vec2& lens) const;
+  // film: position on the image in [0,1]^2, (0,0) the top-left corner; lens in [0,1)^2;
+  // time: the fraction of the shutter in [0, 1), which the ray carries.
+  Ray generate_ray(const vec2& film, const vec2& lens, float time = 0.0f) const;
+  bool moves() const { return !motion.empty(); }
+  glm::mat4 camera_to_world_at(float time) const { return motion.empty() ? camera_to_world : motion.at(time); }
+  // Where the camera looks and stands, and its projections: at the shutter's opening.
   vec3 forward() const { return -glm::vec3(camera_to_world[2]); }
   vec3 position() const { return glm::vec3(camera_to_world[3]); }
   glm::mat4 world_to_camera() const;
   glm::mat4 world_to_ndc() const;  // camera space -> [-1,1]^2 screen, z = depth
 };
 
-// The camera from the scene description (vertical fov, aspect from the image).
+// The camera from the scene description (vertical fov, aspect from the image), with its
+// motion when it has any (Camera::motion; steps equal to step 0 are no motion).
 RenderCamera make_camera(const Camera& cam, int width, int height, const CameraParams& params);
 
 // A perspective camera on +Z of the bounds' centre looking down -Z that frames the bounding

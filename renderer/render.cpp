@@ -52,6 +52,9 @@ void render_tile(const RenderScene& scene, const RenderCamera& camera, const Pix
   params.light_sampling = settings.light_sampling;
   params.clamp = settings.clamp;
   const vec3 forward = camera.forward();
+  // Motion blur: each camera sample draws its time, after the film and lens positions. A
+  // scene where nothing moves draws none, so its numbers and image stay what they were.
+  const bool camera_moves = camera.moves(), timed = scene.moves() || camera_moves;
   const float inv_w = 1.0f / settings.width, inv_h = 1.0f / settings.height;
   for (int y = tile.y0; y < tile.y1; ++y) {
     for (int x = tile.x0; x < tile.x1; ++x) {
@@ -62,7 +65,8 @@ void render_tile(const RenderScene& scene, const RenderCamera& camera, const Pix
         Sampler rng(settings.sampler, x, y, s, settings.seed);
         const vec2 at = filter.sample(rng.next2());
         const vec2 lens = rng.next2();
-        const Ray ray = camera.generate_ray({(x + at.x) * inv_w, (y + at.y) * inv_h}, lens);
+        const float time = timed ? rng.next() : 0.0f;
+        const Ray ray = camera.generate_ray({(x + at.x) * inv_w, (y + at.y) * inv_h}, lens, time);
         if (!is_finite(ray.origin) || !is_finite(ray.direction)) {  // a degenerate camera: Embree
           ++counters.path.dropped;                                 // would abort on such a ray
           ++sums.samples;
@@ -70,7 +74,8 @@ void render_tile(const RenderScene& scene, const RenderCamera& camera, const Pix
         }
         FirstHit first;
         const glm::dvec3 radiance(trace_path(scene, params, ray, rng, first, counters.path));
-        add_sample(sums, s, radiance, first, first.distance * glm::dot(ray.direction, forward));
+        const vec3 axis = camera_moves ? -vec3(camera.camera_to_world_at(time)[2]) : forward;
+        add_sample(sums, s, radiance, first, first.distance * glm::dot(ray.direction, axis));
       }
       film.add(x, y, sums);
       counters.samples += wave.end - begin;

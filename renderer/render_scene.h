@@ -38,6 +38,9 @@ struct RenderScene {
   std::unique_ptr<SceneGeometry> geometry;
   std::unique_ptr<AreaLights> area_lights;  // emissive triangles
   double bvh_build_seconds = 0.0;
+
+  // Something moves or deforms while the shutter is open (the camera aside).
+  bool moves() const { return geometry->moves(); }
 };
 
 }  // namespace tessera

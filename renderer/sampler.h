@@ -2,9 +2,9 @@
 // index, draw, seed) alone, never of the thread, tile or order of work: the image is the same
 // bit for bit however it is split, and a resumed render continues exactly.
 //
-// The integrator asks for draws in a fixed order (camera jitter, lens, then per bounce: light
-// selection and point, environment direction, lobe and direction, roulette), each draw 1, 2
-// or 3 numbers meant to be used together.
+// The integrator asks for draws in a fixed order (camera jitter, lens, the shutter time when
+// something moves, then per bounce: light selection and point, environment direction, lobe
+// and direction, roulette), each draw 1, 2 or 3 numbers meant to be used together.
 //   sobol:       each draw is a point of a padded, Owen-scrambled Sobol sequence (pbrt-v4's
 //                PaddedSobolSampler, Burley 2020): over a pixel's samples, every 2D draw is a
 //                (0,2)-sequence, so each of its elementary intervals holds one point per 2^k

@@ -1,25 +1,68 @@
 #include "renderer/scene_geometry.h"
 
 #include "renderer/integrator/materials.h"
+#include "renderer/motion.h"
 
+#include <algorithm>
 #include <cstring>
 #include <map>
 #include <stdexcept>
+#include <string>
 
 namespace tessera {
 namespace {
 
-// Bakes a mesh into world space. A mirroring transform reverses the winding so that the
-// front face (counter-clockwise in the file) stays the front face.
-TriangleMesh to_world_space(const TriangleMesh& src, const glm::mat4& m) {
+// Bakes a mesh into world space, each motion step too when it deforms (else its motion
+// arrays are left behind). A mirroring transform reverses the winding so that the front face
+// (counter-clockwise in the file) stays the front face.
+TriangleMesh to_world_space(const TriangleMesh& src, const glm::mat4& m, bool deforms) {
   TriangleMesh out = src;
+  if (!deforms) {
+    out.motion_positions = {};
+    out.motion_normals = {};
+    out.motion_tangents = {};
+  }
   const glm::mat3 nm = glm::transpose(glm::inverse(glm::mat3(m)));
-  for (vec3& p : out.positions) p = vec3(m * vec4(p, 1.0f));
-  for (vec3& n : out.normals) n = nm * n;
-  for (vec4& t : out.tangents) t = vec4(glm::mat3(m) * vec3(t), t.w);
+  auto points = [&](std::vector<vec3>& ps) {
+    for (vec3& p : ps) p = vec3(m * vec4(p, 1.0f));
+  };
+  auto normals = [&](std::vector<vec3>& ns) {
+    for (vec3& n : ns) n = nm * n;
+  };
+  auto tangents = [&](std::vector<vec4>& ts) {
+    for (vec4& t : ts) t = vec4(glm::mat3(m) * vec3(t), t.w);
+  };
+  points(out.positions);
+  normals(out.normals);
+  tangents(out.tangents);
+  for (auto& step : out.motion_positions) points(step);
+  for (auto& step : out.motion_normals) normals(step);
+  for (auto& step : out.motion_tangents) tangents(step);
   if (glm::determinant(glm::mat3(m)) < 0.0f)
     for (std::size_t i = 0; i + 2 < out.indices.size(); i += 3) std::swap(out.indices[i + 1], out.indices[i + 2]);
   return out;
+}
+
+// A transform in Embree's parts. Consecutive steps' quaternions are kept in one hemisphere
+// (q and -q are the same rotation), so that Embree's slerp and its motion bounds agree on
+// the short way round.
+RTCQuaternionDecomposition embree_parts(const glm::mat4& m, glm::quat& previous) {
+  AffineParts p = decompose(m);
+  if (glm::dot(p.rotation, previous) < 0.0f) p.rotation = -p.rotation;
+  previous = p.rotation;
+  RTCQuaternionDecomposition qd;
+  rtcInitQuaternionDecomposition(&qd);
+  rtcQuaternionDecompositionSetScale(&qd, p.upper[0][0], p.upper[1][1], p.upper[2][2]);
+  rtcQuaternionDecompositionSetSkew(&qd, p.upper[1][0], p.upper[2][0], p.upper[2][1]);
+  rtcQuaternionDecompositionSetQuaternion(&qd, p.rotation.w, p.rotation.x, p.rotation.y, p.rotation.z);
+  rtcQuaternionDecompositionSetTranslation(&qd, p.translation.x, p.translation.y, p.translation.z);
+  return qd;
+}
+
+// Whether any later motion step differs from step 0.
+template <typename T>
+bool steps_differ(const std::vector<T>& step0, const std::vector<std::vector<T>>& later) {
+  return std::any_of(later.begin(), later.end(), [&](const std::vector<T>& step) { return step != step0; });
 }
 
 // A tangent frame from the triangle's UV parameterisation, for normal maps on meshes without
@@ -53,17 +96,32 @@ T interpolate(const std::vector<T>& values, const std::uint32_t* idx, float u, f
   return (1.0f - u - v) * values[idx[0]] + u * values[idx[1]] + v * values[idx[2]];
 }
 
+// The same for an attribute with motion steps, at a time between two of them.
+template <typename T>
+T interpolate(const std::vector<T>& step0, const std::vector<std::vector<T>>& later, const std::uint32_t* idx,
+              float u, float v, MotionSegment seg) {
+  return (1.0f - u - v) * attribute_at(step0, later, idx[0], seg) + u * attribute_at(step0, later, idx[1], seg) +
+         v * attribute_at(step0, later, idx[2], seg);
+}
+
 }  // namespace
 
 SceneGeometry::SceneGeometry(const SceneDescription& scene, RTCDevice device, const MaterialTable* materials)
-    : scene_(scene), device_(device), materials_(materials) {
+    : scene_(scene), device_(device), materials_(materials), steps_(std::max(scene.motion_steps, 1)) {
+  if (steps_ > 1) check_motion(scene);
+  deforms_.resize(scene.meshes.size());
+  for (std::size_t m = 0; m < scene.meshes.size(); ++m)
+    for (const TriangleMesh& prim : scene.meshes[m].primitives) deforms_[m].push_back(mesh_deforms(prim));
   top_ = rtcNewScene(device_);
   rtcSetSceneFlags(top_, RTC_SCENE_FLAG_ROBUST);
   rtcSetSceneBuildQuality(top_, RTC_BUILD_QUALITY_HIGH);
   std::map<int, std::vector<const Instance*>> by_mesh;
   for (const Instance& inst : scene.instances) by_mesh[inst.mesh].push_back(&inst);
   std::size_t baked_count = 0;
-  for (const auto& [mesh, placements] : by_mesh) baked_count += placements.size() == 1 ? scene.meshes[mesh].primitives.size() : 0;
+  auto baked = [&](const std::vector<const Instance*>& placements) {
+    return placements.size() == 1 && !instance_moves(*placements[0]);  // a moving one is an instance
+  };
+  for (const auto& [mesh, placements] : by_mesh) baked_count += baked(placements) ? scene.meshes[mesh].primitives.size() : 0;
   baked_.reserve(baked_count);  // Placement keeps pointers into baked_
   prototypes_.assign(scene.meshes.size(), nullptr);
   for (const auto& [mesh, placements] : by_mesh) {
@@ -71,7 +129,7 @@ SceneGeometry::SceneGeometry(const SceneDescription& scene, RTCDevice device, co
     for (const TriangleMesh& prim : scene.meshes[mesh].primitives) tris += prim.triangle_count();
     unique_triangles_ += tris;
     instanced_triangles_ += tris * placements.size();
-    if (placements.size() == 1) add_baked(scene.meshes[mesh], placements[0]->object_to_world);
+    if (baked(placements)) add_baked(scene.meshes[mesh], placements[0]->object_to_world, deforms_[mesh]);
     else add_instanced(mesh, placements);
   }
   rtcCommitScene(top_);
@@ -80,23 +138,71 @@ SceneGeometry::SceneGeometry(const SceneDescription& scene, RTCDevice device, co
 }
 
 SceneGeometry::~SceneGeometry() {
+  for (const InstanceRecord& inst : top_instances_)
+    if (inst.moving) rtcReleaseGeometry(inst.moving);
   for (RTCScene s : prototypes_)
     if (s) rtcReleaseScene(s);
   if (top_) rtcReleaseScene(top_);
 }
 
-unsigned SceneGeometry::attach_triangles(RTCScene target, const TriangleMesh& mesh) {
+void SceneGeometry::check_motion(const SceneDescription& scene) const {
+  const std::size_t later = static_cast<std::size_t>(steps_ - 1);
+  auto fail = [&](const std::string& what) {
+    throw std::invalid_argument(what + " does not have motion_steps - 1 = " + std::to_string(later) + " motion steps");
+  };
+  for (std::size_t i = 0; i < scene.instances.size(); ++i)
+    if (!scene.instances[i].motion.empty() && scene.instances[i].motion.size() != later) fail("instance " + std::to_string(i));
+  for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+    for (std::size_t p = 0; p < scene.meshes[m].primitives.size(); ++p) {
+      const TriangleMesh& t = scene.meshes[m].primitives[p];
+      const std::string name = "mesh " + std::to_string(m) + " primitive " + std::to_string(p);
+      auto check = [&](const auto& step0, const auto& steps, const char* what) {
+        if (steps.empty()) return;
+        if (steps.size() != later) fail(name + "'s " + what);
+        for (const auto& step : steps)
+          if (step.size() != step0.size() || step0.size() != t.positions.size())
+            throw std::invalid_argument(name + "'s " + what + " at a motion step are not one per vertex");
+      };
+      check(t.positions, t.motion_positions, "positions");
+      check(t.normals, t.motion_normals, "normals");
+      check(t.tangents, t.motion_tangents, "tangents");
+    }
+  }
+}
+
+bool SceneGeometry::instance_moves(const Instance& inst) const {
+  return steps_ > 1 && std::any_of(inst.motion.begin(), inst.motion.end(),
+                                   [&](const glm::mat4& m) { return m != inst.object_to_world; });
+}
+
+bool SceneGeometry::mesh_deforms(const TriangleMesh& mesh) const {
+  return steps_ > 1 && (steps_differ(mesh.positions, mesh.motion_positions) ||
+                        steps_differ(mesh.normals, mesh.motion_normals) ||
+                        steps_differ(mesh.tangents, mesh.motion_tangents));
+}
+
+unsigned SceneGeometry::attach_triangles(RTCScene target, const TriangleMesh& mesh, bool deforms) {
   RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-  // Embree may read 16 bytes at the last vertex: its own buffers are padded for that.
-  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
-      geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.positions.size()));
+  // One vertex buffer per motion step when the positions move; Embree interpolates them.
+  const unsigned steps = deforms && !mesh.motion_positions.empty() ? static_cast<unsigned>(steps_) : 1u;
+  if (steps > 1) rtcSetGeometryTimeStepCount(geom, steps);
+  for (unsigned k = 0; k < steps; ++k) {
+    const std::vector<vec3>& positions = k == 0 ? mesh.positions : mesh.motion_positions[k - 1];
+    // Embree may read 16 bytes at the last vertex: its own buffers are padded for that.
+    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+        geom, RTC_BUFFER_TYPE_VERTEX, k, RTC_FORMAT_FLOAT3, 3 * sizeof(float), positions.size()));
+    if (!vertices) {
+      rtcReleaseGeometry(geom);
+      throw std::runtime_error("Embree could not allocate geometry buffers (out of memory?)");
+    }
+    std::memcpy(vertices, positions.data(), positions.size() * sizeof(vec3));
+  }
   auto* indices = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(
       geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(std::uint32_t), mesh.triangle_count()));
-  if (!vertices || !indices) {
+  if (!indices) {
     rtcReleaseGeometry(geom);
     throw std::runtime_error("Embree could not allocate geometry buffers (out of memory?)");
   }
-  std::memcpy(vertices, mesh.positions.data(), mesh.positions.size() * sizeof(vec3));
   std::memcpy(indices, mesh.indices.data(), mesh.triangle_count() * 3 * sizeof(std::uint32_t));
   install_filters(geom, mesh);
   rtcCommitGeometry(geom);
@@ -154,6 +260,7 @@ void shadow_filter(const RTCFilterFunctionNArguments* args) {
     hit.geom = RTCHitN_geomID(args->hit, args->N, i);
     hit.prim = RTCHitN_primID(args->hit, args->N, i);
     hit.instance = RTCHitN_instID(args->hit, args->N, i, 0);
+    hit.time = RTCRayN_time(args->ray, args->N, i);
     if (query->seen_count == SceneGeometry::kMaxThinCrossings) continue;  // too many: taken as blocked
     if (!query->first_time(hit.instance, hit.geom, hit.prim)) {
       args->valid[i] = 0;
@@ -162,10 +269,11 @@ void shadow_filter(const RTCFilterFunctionNArguments* args) {
     const float alpha = view->alpha_tested ? view->alpha_at(hit.prim, hit.u, hit.v) : 1.0f;
     vec3 through(1.0f - alpha);
     if (alpha > 0.0f && view->transmissive) {
-      const Ray ray{{RTCRayN_org_x(args->ray, args->N, i), RTCRayN_org_y(args->ray, args->N, i),
-                     RTCRayN_org_z(args->ray, args->N, i)},
-                    {RTCRayN_dir_x(args->ray, args->N, i), RTCRayN_dir_y(args->ray, args->N, i),
-                     RTCRayN_dir_z(args->ray, args->N, i)}};
+      Ray ray{{RTCRayN_org_x(args->ray, args->N, i), RTCRayN_org_y(args->ray, args->N, i),
+               RTCRayN_org_z(args->ray, args->N, i)},
+              {RTCRayN_dir_x(args->ray, args->N, i), RTCRayN_dir_y(args->ray, args->N, i),
+               RTCRayN_dir_z(args->ray, args->N, i)}};
+      ray.time = hit.time;
       through += alpha * query->thin(query->user, ray, hit);
     }
     query->transmittance *= through;
@@ -205,13 +313,15 @@ void SceneGeometry::install_filters(RTCGeometry geom, const TriangleMesh& mesh) 
   rtcSetGeometryOccludedFilterFunction(geom, shadow_filter);
 }
 
-void SceneGeometry::add_baked(const Mesh& mesh, const glm::mat4& to_world) {
-  for (const TriangleMesh& prim : mesh.primitives) {
-    baked_.push_back(to_world_space(prim, to_world));
-    const unsigned id = attach_triangles(top_, baked_.back());
+void SceneGeometry::add_baked(const Mesh& mesh, const glm::mat4& to_world, const std::vector<char>& deforms) {
+  for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
+    baked_.push_back(to_world_space(mesh.primitives[p], to_world, deforms[p]));
+    const unsigned id = attach_triangles(top_, baked_.back(), deforms[p]);
     top_geometry_.resize(id + 1, Placement{nullptr});
     top_is_instance_.resize(id + 1, false);
     top_geometry_[id] = Placement{&baked_.back()};
+    top_geometry_[id].deforms = deforms[p];
+    moves_ = moves_ || deforms[p];
   }
 }
 
@@ -219,19 +329,34 @@ void SceneGeometry::add_instanced(int mesh_index, const std::vector<const Instan
   RTCScene proto = rtcNewScene(device_);
   rtcSetSceneFlags(proto, RTC_SCENE_FLAG_ROBUST);
   rtcSetSceneBuildQuality(proto, RTC_BUILD_QUALITY_HIGH);
-  for (const TriangleMesh& prim : scene_.meshes[mesh_index].primitives) attach_triangles(proto, prim);
+  const auto& prims = scene_.meshes[mesh_index].primitives;
+  for (std::size_t p = 0; p < prims.size(); ++p) {
+    attach_triangles(proto, prims[p], deforms_[mesh_index][p]);
+    moves_ = moves_ || deforms_[mesh_index][p];
+  }
   rtcCommitScene(proto);
   prototypes_[mesh_index] = proto;
   for (const Instance* inst : placements) {
     RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
     rtcSetGeometryInstancedScene(geom, proto);
-    rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &inst->object_to_world[0][0]);
+    const bool moving = instance_moves(*inst);
+    if (moving) {
+      rtcSetGeometryTimeStepCount(geom, static_cast<unsigned>(steps_));
+      glm::quat previous(1.0f, 0.0f, 0.0f, 0.0f);
+      for (int k = 0; k < steps_; ++k) {
+        const RTCQuaternionDecomposition qd = embree_parts(k == 0 ? inst->object_to_world : inst->motion[k - 1], previous);
+        rtcSetGeometryTransformQuaternion(geom, static_cast<unsigned>(k), &qd);
+      }
+      moves_ = true;
+    } else {
+      rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &inst->object_to_world[0][0]);
+    }
     rtcCommitGeometry(geom);
     const unsigned id = rtcAttachGeometry(top_, geom);
-    rtcReleaseGeometry(geom);
+    if (!moving) rtcReleaseGeometry(geom);  // a moving one is kept, to ask for its transform at a time
     top_instances_.resize(id + 1);
     top_is_instance_.resize(id + 1, false);
-    top_instances_[id] = {mesh_index, inst->object_to_world};
+    top_instances_[id] = {mesh_index, inst->object_to_world, moving ? geom : nullptr};
     top_is_instance_[id] = true;
   }
 }
@@ -240,12 +365,14 @@ std::vector<SceneGeometry::PlacedPrimitive> SceneGeometry::placed_primitives() c
   std::vector<PlacedPrimitive> out;
   for (std::uint32_t id = 0; id < top_is_instance_.size(); ++id) {
     if (!top_is_instance_[id]) {
-      if (top_geometry_[id].mesh) out.push_back({id, RTC_INVALID_GEOMETRY_ID, top_geometry_[id].mesh, glm::mat4(1.0f)});
+      const Placement& pl = top_geometry_[id];
+      if (pl.mesh) out.push_back({id, RTC_INVALID_GEOMETRY_ID, pl.mesh, glm::mat4(1.0f), pl.deforms});
       continue;
     }
     const InstanceRecord& inst = top_instances_[id];
     const auto& prims = scene_.meshes[inst.mesh].primitives;
-    for (std::uint32_t g = 0; g < prims.size(); ++g) out.push_back({g, id, &prims[g], inst.to_world});
+    for (std::uint32_t g = 0; g < prims.size(); ++g)
+      out.push_back({g, id, &prims[g], inst.to_world, inst.moving != nullptr || deforms_[inst.mesh][g]});
   }
   return out;
 }
@@ -262,7 +389,7 @@ bool SceneGeometry::intersect(const Ray& ray, HitRecord& hit) const {
   rh.ray.dir_z = ray.direction.z;
   rh.ray.tnear = ray.tmin;
   rh.ray.tfar = ray.tmax;
-  rh.ray.time = 0.0f;
+  rh.ray.time = ray.time;
   rh.ray.mask = 0xffffffffu;
   rh.ray.id = 0;
   rh.ray.flags = 0;
@@ -270,12 +397,12 @@ bool SceneGeometry::intersect(const Ray& ray, HitRecord& hit) const {
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(top_, &context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-  hit = {rh.ray.tfar, rh.hit.u, rh.hit.v, rh.hit.geomID, rh.hit.primID, rh.hit.instID[0]};
+  hit = {rh.ray.tfar, rh.hit.u, rh.hit.v, rh.hit.geomID, rh.hit.primID, rh.hit.instID[0], rh.ray.time};
   return true;
 }
 
-vec3 SceneGeometry::transmittance(const vec3& origin, const vec3& direction, float tmax, ThinTransmittance thin,
-                                  const void* user) const {
+vec3 SceneGeometry::transmittance(const vec3& origin, const vec3& direction, float tmax, float time,
+                                  ThinTransmittance thin, const void* user) const {
   ShadowQuery query;
   rtcInitIntersectContext(&query.embree);
   query.thin = thin;
@@ -289,7 +416,7 @@ vec3 SceneGeometry::transmittance(const vec3& origin, const vec3& direction, flo
   ray.dir_z = direction.z;
   ray.tnear = 0.0f;
   ray.tfar = tmax;
-  ray.time = 0.0f;
+  ray.time = time;
   ray.mask = 0xffffffffu;
   ray.id = 0;
   ray.flags = 0;
@@ -297,15 +424,44 @@ vec3 SceneGeometry::transmittance(const vec3& origin, const vec3& direction, flo
   return ray.tfar < 0.0f ? vec3(0.0f) : query.transmittance;  // Embree sets tfar to -inf on a hit
 }
 
-const SceneGeometry::Placement& SceneGeometry::placement(const HitRecord& hit, Placement& scratch) const {
-  if (hit.instance == RTC_INVALID_GEOMETRY_ID) return top_geometry_[hit.geom];
+const SceneGeometry::Placement& SceneGeometry::instance_placement(const HitRecord& hit, Placement& scratch) const {
   const InstanceRecord& inst = top_instances_[hit.instance];
   scratch.mesh = &scene_.meshes[inst.mesh].primitives[hit.geom];
   scratch.to_world = inst.to_world;
+  if (inst.moving) rtcGetGeometryTransform(inst.moving, hit.time, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &scratch.to_world[0][0]);
   scratch.normal_to_world = glm::transpose(glm::inverse(glm::mat3(inst.to_world)));
   scratch.orientation = glm::determinant(glm::mat3(inst.to_world)) < 0.0f ? -1.0f : 1.0f;
   scratch.in_world_space = false;
+  scratch.deforms = steps_ > 1 && deforms_[inst.mesh][hit.geom];
   return scratch;
+}
+
+SceneGeometry::Corners SceneGeometry::corners(const Placement& pl, const std::uint32_t* idx, float time) const {
+  const TriangleMesh& m = *pl.mesh;
+  Corners c;
+  if (pl.deforms && !m.motion_positions.empty()) {
+    const MotionSegment seg = motion_segment(time, steps_);
+    c.p0 = attribute_at(m.positions, m.motion_positions, idx[0], seg);
+    c.p1 = attribute_at(m.positions, m.motion_positions, idx[1], seg);
+    c.p2 = attribute_at(m.positions, m.motion_positions, idx[2], seg);
+  } else {
+    c.p0 = m.positions[idx[0]];
+    c.p1 = m.positions[idx[1]];
+    c.p2 = m.positions[idx[2]];
+  }
+  return c;
+}
+
+SceneGeometry::Corners SceneGeometry::corners(const HitRecord& hit) const {
+  Placement scratch{nullptr};
+  const Placement& pl = placement(hit, scratch);
+  Corners c = corners(pl, &pl.mesh->indices[3 * hit.prim], hit.time);
+  if (!pl.in_world_space) {
+    c.p0 = vec3(pl.to_world * vec4(c.p0, 1.0f));
+    c.p1 = vec3(pl.to_world * vec4(c.p1, 1.0f));
+    c.p2 = vec3(pl.to_world * vec4(c.p2, 1.0f));
+  }
+  return c;
 }
 
 SurfaceHit SceneGeometry::surface(const Ray& ray, const HitRecord& hit) const {
@@ -313,12 +469,23 @@ SurfaceHit SceneGeometry::surface(const Ray& ray, const HitRecord& hit) const {
   const Placement& pl = placement(hit, scratch);
   const TriangleMesh& m = *pl.mesh;
   const std::uint32_t* idx = &m.indices[3 * hit.prim];
-  vec3 p0 = m.positions[idx[0]], p1 = m.positions[idx[1]], p2 = m.positions[idx[2]];
+  vec3 p0, p1, p2;
+  if (!pl.deforms) {
+    p0 = m.positions[idx[0]];
+    p1 = m.positions[idx[1]];
+    p2 = m.positions[idx[2]];
+  } else {  // vertex attributes with motion steps are read at the hit's time
+    const Corners c = corners(pl, idx, hit.time);
+    p0 = c.p0;
+    p1 = c.p1;
+    p2 = c.p2;
+  }
   if (!pl.in_world_space) {
     p0 = vec3(pl.to_world * vec4(p0, 1.0f));
     p1 = vec3(pl.to_world * vec4(p1, 1.0f));
     p2 = vec3(pl.to_world * vec4(p2, 1.0f));
   }
+  const bool timed = pl.deforms;
   SurfaceHit s;
   s.t = hit.t;
   s.p = (1.0f - hit.u - hit.v) * p0 + hit.u * p1 + hit.v * p2;
@@ -327,14 +494,18 @@ SurfaceHit SceneGeometry::surface(const Ray& ray, const HitRecord& hit) const {
   s.ng = len > 0.0f && std::isfinite(len) ? ng / len : -ray.direction;
   s.ns = s.ng;
   if (!m.normals.empty()) {
-    vec3 n = interpolate(m.normals, idx, hit.u, hit.v);
+    vec3 n = timed && !m.motion_normals.empty()
+                 ? interpolate(m.normals, m.motion_normals, idx, hit.u, hit.v, motion_segment(hit.time, steps_))
+                 : interpolate(m.normals, idx, hit.u, hit.v);
     if (!pl.in_world_space) n = pl.normal_to_world * n;
     const float nl = glm::length(n);
     if (nl > 0.0f && std::isfinite(nl)) s.ns = n / nl;
     if (glm::dot(s.ns, s.ng) < 0.0f) s.ng = -s.ng;  // trust the author's normals for the side
   }
   if (!m.tangents.empty()) {
-    vec4 t = interpolate(m.tangents, idx, hit.u, hit.v);
+    vec4 t = timed && !m.motion_tangents.empty()
+                 ? interpolate(m.tangents, m.motion_tangents, idx, hit.u, hit.v, motion_segment(hit.time, steps_))
+                 : interpolate(m.tangents, idx, hit.u, hit.v);
     vec3 tw = pl.in_world_space ? vec3(t) : glm::mat3(pl.to_world) * vec3(t);
     s.tangent = vec4(tw, t.w < 0.0f ? -1.0f : 1.0f);
   }

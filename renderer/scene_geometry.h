@@ -1,6 +1,11 @@
 // The scene's triangles in Embree: one BVH over the world. A mesh placed once is baked into
 // world space in the top-level BVH; a mesh placed several times is built once as its own
 // BVH and placed with Embree instances, so memory does not grow with placements.
+// Motion blur (SceneDescription::motion_steps > 1): a deforming mesh gets one Embree vertex
+// buffer per motion step; a placement that moves is an Embree instance with a transform per
+// step in parts (RTCQuaternionDecomposition), so that rotations turn rather than shrink.
+// Rays carry their time and Embree intersects the scene as it is then; nothing that moves
+// nothing (motion_steps 1, or steps equal to step 0) is built or read as before.
 #pragma once
 
 #include <embree3/rtcore.h>
@@ -14,10 +19,11 @@
 
 namespace tessera {
 
-// Where a hit landed, as Embree reports it.
+// Where a hit landed, as Embree reports it, and when (the ray's time).
 struct HitRecord {
   float t = 0.0f, u = 0.0f, v = 0.0f;
   std::uint32_t geom = RTC_INVALID_GEOMETRY_ID, prim = 0, instance = RTC_INVALID_GEOMETRY_ID;
+  float time = 0.0f;
 };
 
 // Everything shading needs about a hit point, in world space.
@@ -53,51 +59,77 @@ class SceneGeometry {
   // With `materials`, triangles whose material is alpha MASK or BLEND get Embree filter
   // functions, so every ray (camera, bounce, shadow) sees the cut-outs the same way; those
   // of transmissive materials get an occlusion filter, so shadow rays pass thin surfaces.
+  // Throws std::invalid_argument when motion arrays do not have motion_steps - 1 steps.
   SceneGeometry(const SceneDescription& scene, RTCDevice device, const MaterialTable* materials = nullptr);
   ~SceneGeometry();
   SceneGeometry(const SceneGeometry&) = delete;
   SceneGeometry& operator=(const SceneGeometry&) = delete;
 
   bool intersect(const Ray& ray, HitRecord& hit) const;
-  // What reaches origin from origin + tmax direction: 0 behind an opaque surface, else the
-  // product of what the surfaces between let through (1 - alpha of a BLEND surface, the
-  // straight-through transmittance of a thin transmissive one, from `thin`). Each surface
-  // counts once; past kMaxThinCrossings of them the ray is taken as blocked.
+  // What reaches origin from origin + tmax direction at `time`: 0 behind an opaque surface,
+  // else the product of what the surfaces between let through (1 - alpha of a BLEND
+  // surface, the straight-through transmittance of a thin transmissive one, from `thin`).
+  // Each surface counts once; past kMaxThinCrossings of them the ray is taken as blocked.
   static constexpr int kMaxThinCrossings = 16;
-  vec3 transmittance(const vec3& origin, const vec3& direction, float tmax, ThinTransmittance thin,
+  vec3 transmittance(const vec3& origin, const vec3& direction, float tmax, float time, ThinTransmittance thin,
                      const void* user) const;
+  // The surface at the hit, where it is at hit.time.
   SurfaceHit surface(const Ray& ray, const HitRecord& hit) const;
+  // The world-space corners of the hit's triangle (geom, instance, prim) at hit.time, in the
+  // order surface() reads them (its u and v are the weights of the second and third).
+  struct Corners {
+    vec3 p0, p1, p2;
+  };
+  Corners corners(const HitRecord& hit) const;
 
-  // Every triangle list where it stands, with the ids a hit on it carries.
+  // Every triangle list where it stands (at the shutter's opening), with the ids a hit on it
+  // carries.
   struct PlacedPrimitive {
     std::uint32_t geom, instance;  // as in HitRecord
     const TriangleMesh* mesh;
     glm::mat4 to_world;  // identity for meshes baked into world space
+    bool moves;  // its placement moves or its mesh deforms: corners() depend on the time
   };
   std::vector<PlacedPrimitive> placed_primitives() const;
+
+  // Whether anything moves while the shutter is open, and the motion steps the scene has.
+  bool moves() const { return moves_; }
+  int motion_steps() const { return steps_; }
 
   std::uint64_t unique_triangles() const { return unique_triangles_; }
   std::uint64_t instanced_triangles() const { return instanced_triangles_; }
 
  private:
-  // One triangle mesh where it stands: world-space data, or object-space data + transform.
+  // One triangle mesh where it stands: world-space data, or object-space data + transform
+  // (for a moving instance, its transform at the hit's time).
   struct Placement {
     const TriangleMesh* mesh;
     glm::mat4 to_world{1.0f};
     glm::mat3 normal_to_world{1.0f};
     float orientation = 1.0f;  // -1 where the transform mirrors (negative determinant)
     bool in_world_space = true;
+    bool deforms = false;  // the mesh's vertex arrays have motion steps, read at the time
   };
   struct InstanceRecord {  // a top-level Embree instance: a placed multi-primitive mesh
     int mesh;
-    glm::mat4 to_world;
+    glm::mat4 to_world;  // at the shutter's opening
+    RTCGeometry moving = nullptr;  // a placement that moves: Embree gives its transform at a time
   };
 
-  void add_baked(const Mesh& mesh, const glm::mat4& to_world);
+  void check_motion(const SceneDescription& scene) const;
+  bool instance_moves(const Instance& inst) const;
+  bool mesh_deforms(const TriangleMesh& mesh) const;
+  void add_baked(const Mesh& mesh, const glm::mat4& to_world, const std::vector<char>& deforms);
   void add_instanced(int mesh_index, const std::vector<const Instance*>& placements);
-  unsigned attach_triangles(RTCScene target, const TriangleMesh& mesh);
+  unsigned attach_triangles(RTCScene target, const TriangleMesh& mesh, bool deforms);
   void install_filters(RTCGeometry geom, const TriangleMesh& mesh);
-  const Placement& placement(const HitRecord& hit, Placement& scratch) const;
+  // Where the hit's triangles stand: a baked mesh's placement, or an instance's (at the hit's
+  // time) made in `scratch`.
+  const Placement& placement(const HitRecord& hit, Placement& scratch) const {
+    return hit.instance == RTC_INVALID_GEOMETRY_ID ? top_geometry_[hit.geom] : instance_placement(hit, scratch);
+  }
+  const Placement& instance_placement(const HitRecord& hit, Placement& scratch) const;
+  Corners corners(const Placement& pl, const std::uint32_t* idx, float time) const;  // in pl's space
 
 
   const SceneDescription& scene_;
@@ -110,6 +142,9 @@ class SceneGeometry {
   std::vector<Placement> top_geometry_;  // by top-level geomID (baked triangles)
   std::vector<InstanceRecord> top_instances_;  // by top-level geomID (instances)
   std::vector<bool> top_is_instance_;
+  std::vector<std::vector<char>> deforms_;  // [mesh][primitive]: vertex arrays with motion steps
+  int steps_ = 1;  // motion steps: 1 = no motion blur
+  bool moves_ = false;
   std::uint64_t unique_triangles_ = 0, instanced_triangles_ = 0;
 };
 

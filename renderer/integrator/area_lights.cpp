@@ -26,6 +26,11 @@ double textured_luminance(const SceneGeometry& geometry, const MaterialTable& ma
   return std::max(sum / 4.0, 0.01 * emitted_luminance(m));
 }
 
+HitRecord at_time(HitRecord where, float time) {
+  where.time = time;
+  return where;
+}
+
 }  // namespace
 
 AreaLights::AreaLights(const SceneDescription& scene, const SceneGeometry& geometry, const MaterialTable& materials)
@@ -53,9 +58,19 @@ AreaLights::AreaLights(const SceneDescription& scene, const SceneGeometry& geome
       const SurfaceHit centre = geometry.surface(Ray{p0, vec3(0, 0, 1)}, where);
       const vec3 constant = m.emissive_factor * m.emissive_strength;
       const bool textured = m.emissive_texture.present();
-      triangles_.push_back({where, p0, p1 - p0, p2 - p0, centre.ng, area, constant, textured, m.double_sided});
+      Triangle tri{where, {p0, p1 - p0, p2 - p0, centre.ng, area}, constant, textured, m.double_sided, pp.moves, 1.0f};
+      double mean_area = area;
+      if (pp.moves) {  // its front side as at the opening; chosen by its mean area over the steps
+        tri.side = glm::dot(centre.ng, glm::cross(p1 - p0, p2 - p0)) < 0.0f ? -1.0f : 1.0f;
+        const int steps = geometry.motion_steps();
+        mean_area = 0.0;
+        for (int k = 0; k < steps; ++k)
+          mean_area += shape_at(at_time(where, static_cast<float>(k) / static_cast<float>(steps - 1)), tri.side).area / steps;
+        tri.shape = shape_at(where, tri.side);
+      }
+      triangles_.push_back(tri);
       const double radiance = textured ? textured_luminance(geometry, materials, m, where) : le;
-      power.push_back(std::isfinite(area) ? double(area) * radiance * (m.double_sided ? 2.0 : 1.0) : 0.0);
+      power.push_back(std::isfinite(mean_area) ? mean_area * radiance * (m.double_sided ? 2.0 : 1.0) : 0.0);
     }
   }
   by_power_ = Distribution1D(std::move(power));
@@ -65,21 +80,36 @@ AreaLights::AreaLights(const SceneDescription& scene, const SceneGeometry& geome
   }
 }
 
-bool AreaLights::sample(const vec3& p, float u_select, const vec2& u_point, AreaLightSample& s) const {
+AreaLights::Shape AreaLights::shape_at(const HitRecord& where, float side) const {
+  const SceneGeometry::Corners c = geometry_.corners(where);
+  Shape sh{c.p0, c.p1 - c.p0, c.p2 - c.p0, vec3(0.0f), 0.0f};
+  const vec3 n = glm::cross(sh.e1, sh.e2);
+  const float len = glm::length(n);
+  if (len > 0.0f && std::isfinite(len)) {
+    sh.normal = side * n / len;
+    sh.area = 0.5f * len;
+  }
+  return sh;
+}
+
+bool AreaLights::sample(const vec3& p, float time, float u_select, const vec2& u_point, AreaLightSample& s) const {
   if (triangles_.empty()) return false;
   const std::size_t i = by_power_.sample(u_select);
-  if (by_power_.pmf(i) <= 0.0f) return false;
+  const float pmf = by_power_.pmf(i);
+  if (pmf <= 0.0f) return false;
   const Triangle& tri = triangles_[i];
+  const Shape sh = tri.moves ? shape_at(at_time(tri.where, time), tri.side) : tri.shape;
+  if (!(sh.area > 0.0f)) return false;  // a moving one where it collapses
   // Uniform point on the triangle (square-root parameterisation).
   const float su = std::sqrt(u_point.x);
   const float b1 = 1.0f - su, b2 = u_point.y * su;
-  s.p = tri.p0 + b1 * tri.e1 + b2 * tri.e2;
+  s.p = sh.p0 + b1 * sh.e1 + b2 * sh.e2;
   const vec3 d = s.p - p;
   const float dist2 = glm::dot(d, d);
   if (!(dist2 > 0.0f)) return false;
   s.distance = std::sqrt(dist2);
   s.wi = d / s.distance;
-  const float cos_light = -glm::dot(tri.normal, s.wi);
+  const float cos_light = -glm::dot(sh.normal, s.wi);
   if (!(cos_light > 0.0f || tri.double_sided)) return false;  // the back of a one-sided emitter
   const float abs_cos = std::fabs(cos_light);
   if (!(abs_cos > 0.0f)) return false;
@@ -90,9 +120,10 @@ bool AreaLights::sample(const vec3& p, float u_select, const vec2& u_point, Area
     at.u = b1;
     at.v = b2;
     at.t = s.distance;
+    at.time = time;
     s.radiance = materials_.evaluate(geometry_.surface(Ray{p, s.wi}, at)).emission;
   }
-  s.pdf = by_power_.pmf(i) * dist2 / (tri.area * abs_cos);
+  s.pdf = pmf * dist2 / (sh.area * abs_cos);
   return std::isfinite(s.pdf) && s.pdf > 0.0f;
 }
 
@@ -103,7 +134,9 @@ float AreaLights::pdf(const HitRecord& hit, const SurfaceHit& surface, const vec
   if (i >= triangles_.size() || by_power_.pmf(i) <= 0.0f) return 0.0f;
   const float abs_cos = std::fabs(glm::dot(surface.ng, direction));
   if (!(abs_cos > 0.0f)) return 0.0f;
-  return by_power_.pmf(i) * surface.t * surface.t / (triangles_[i].area * abs_cos);
+  const Triangle& tri = triangles_[i];
+  const float area = tri.moves ? shape_at(at_time(tri.where, hit.time), tri.side).area : tri.shape.area;
+  return by_power_.pmf(i) * surface.t * surface.t / (area * abs_cos);
 }
 
 }  // namespace tessera

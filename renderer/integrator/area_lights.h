@@ -1,5 +1,6 @@
 // Emissive triangles as area lights for next-event estimation: one is chosen in proportion
-// to its emitted power, then a point uniformly on it.
+// to its emitted power, then a point uniformly on it. A triangle that moves or deforms while
+// the shutter is open is sampled where it is at the path's time, with its area then.
 #pragma once
 
 #include <cstdint>
@@ -27,23 +28,31 @@ class AreaLights {
   bool empty() const { return triangles_.empty(); }
   std::size_t size() const { return triangles_.size(); }
 
-  // Samples a light point as seen from `p`; false when the sample carries nothing.
-  bool sample(const vec3& p, float u_select, const vec2& u_point, AreaLightSample& s) const;
+  // Samples a light point as seen from `p` at `time`; false when the sample carries nothing.
+  bool sample(const vec3& p, float time, float u_select, const vec2& u_point, AreaLightSample& s) const;
 
   // Solid-angle pdf with which sample() would have produced the hit `hit` (a point on an
-  // emissive triangle, `distance` away from the shading point along `direction`).
+  // emissive triangle at hit.time, surface.t away from the shading point along `direction`).
   float pdf(const HitRecord& hit, const SurfaceHit& surface, const vec3& direction) const;
 
  private:
-  struct Triangle {
-    HitRecord where;  // geom, prim and instance, to evaluate the surface at a point
+  // Where a triangle is: corner, edges, front normal and area.
+  struct Shape {
     vec3 p0, e1, e2;  // world space
     vec3 normal;  // unit, front side (as SurfaceHit::ng)
     float area;
+  };
+  struct Triangle {
+    HitRecord where;  // geom, prim and instance, to evaluate the surface at a point
+    Shape shape;  // where it stands; at the shutter's opening when it moves
     vec3 radiance;  // the emission when it is constant over the triangle
     bool textured;  // emission varies: evaluate the material at each point
     bool double_sided;
+    bool moves;  // moves or deforms: its shape comes from the geometry at each time
+    float side;  // +1 when the front normal is along cross(e1, e2), else -1
   };
+  // The shape of triangle `where` at where.time (area 0 where it collapses), front by `side`.
+  Shape shape_at(const HitRecord& where, float side) const;
   // (top-level id, geometry within it) of a triangle list: instance id and geometry for an
   // instanced mesh, the top-level geometry for a baked one.
   static std::uint64_t list_key(std::uint32_t geom, std::uint32_t instance) {

@@ -53,9 +53,10 @@ vec3 thin_transmittance(const void* user, const Ray& ray, const HitRecord& hit) 
   return GltfBsdf(sp, frame.to_local(-ray.direction), front ? sp.ior : 1.0f / sp.ior, frame).straight_transmittance();
 }
 
-// What reaches the shading point from `distance` along wi (infinity: the environment).
-vec3 visibility(const RenderScene& scene, const vec3& origin, const vec3& wi, float distance) {
-  return scene.geometry->transmittance(origin, wi, distance, thin_transmittance, &scene);
+// What reaches the shading point from `distance` along wi (infinity: the environment) at
+// the path's time.
+vec3 visibility(const RenderScene& scene, const vec3& origin, const vec3& wi, float distance, float time) {
+  return scene.geometry->transmittance(origin, wi, distance, time, thin_transmittance, &scene);
 }
 
 struct ShadingContext {
@@ -63,6 +64,7 @@ struct ShadingContext {
   const Frame& frame;
   const GltfBsdf& bsdf;
   vec3 wo_local;
+  float time;  // the path's: lights and occluders are where they are then
 
   // Ray origin for leaving towards wi: offset to the side of the surface wi goes to.
   vec3 origin_towards(const vec3& wi) const { return offset_ray_origin(s.p, glm::dot(wi, s.ng) >= 0.0f ? s.ng : -s.ng); }
@@ -85,7 +87,7 @@ vec3 punctual_light_contribution(const RenderScene& scene, const ShadingContext&
     const vec3 f = c.bsdf.eval(c.wo_local, wi_local);
     if (f == vec3(0.0f)) continue;
     ++counters.rays;
-    const vec3 through = visibility(scene, c.origin_towards(ls.wi), ls.wi, ls.distance * (1.0f - 1e-4f));
+    const vec3 through = visibility(scene, c.origin_towards(ls.wi), ls.wi, ls.distance * (1.0f - 1e-4f), c.time);
     sum += through * f * ls.irradiance * std::fabs(wi_local.z);
   }
   return sum;
@@ -97,11 +99,11 @@ vec3 area_light_contribution(const RenderScene& scene, const ShadingContext& c, 
   const vec3 u = rng.next3();  // the point (x, y) and the light (z), stratified together
   AreaLightSample ls;
   vec3 wi_local;
-  if (!scene.area_lights->sample(c.s.p, u.z, {u.x, u.y}, ls) || !c.usable(ls.wi, wi_local)) return vec3(0.0f);
+  if (!scene.area_lights->sample(c.s.p, c.time, u.z, {u.x, u.y}, ls) || !c.usable(ls.wi, wi_local)) return vec3(0.0f);
   const vec3 f = c.bsdf.eval(c.wo_local, wi_local);
   if (f == vec3(0.0f) || ls.radiance == vec3(0.0f)) return vec3(0.0f);
   ++counters.rays;
-  const vec3 through = visibility(scene, c.origin_towards(ls.wi), ls.wi, ls.distance * (1.0f - 1e-4f));
+  const vec3 through = visibility(scene, c.origin_towards(ls.wi), ls.wi, ls.distance * (1.0f - 1e-4f), c.time);
   if (through == vec3(0.0f)) return vec3(0.0f);
   const float weight = strategy_weight(mode, true, ls.pdf, c.bsdf.pdf(c.wo_local, wi_local));
   return through * f * ls.radiance * (std::fabs(wi_local.z) * weight / ls.pdf);
@@ -118,7 +120,7 @@ vec3 environment_contribution(const RenderScene& scene, const ShadingContext& c,
   const vec3 f = c.bsdf.eval(c.wo_local, wi_local);
   if (f == vec3(0.0f)) return vec3(0.0f);
   ++counters.rays;
-  const vec3 through = visibility(scene, c.origin_towards(wi), wi, std::numeric_limits<float>::infinity());
+  const vec3 through = visibility(scene, c.origin_towards(wi), wi, std::numeric_limits<float>::infinity(), c.time);
   if (through == vec3(0.0f)) return vec3(0.0f);
   const float weight = strategy_weight(mode, true, pdf, c.bsdf.pdf(c.wo_local, wi_local));
   return through * f * scene.environment.radiance(wi) * (std::fabs(wi_local.z) * weight / pdf);
@@ -164,11 +166,13 @@ vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ra
     if (bounce == 0 && passes == 0) first = {true, sp.base_color, s.ns, hit.t};
     else if (features_pending) first.albedo = feature_weight * sp.base_color, first.normal = s.ns;
   };
+  // Every ray of the path looks at the scene at the camera ray's time.
+  const float time = ray.time;
   // On along the same line past the surface just hit, as if it were absent; false at the bound.
   auto pass_straight = [&](const vec3& origin) {
     if (++passes > kMaxPasses) return false;
     passed += hit.t;
-    ray = Ray{origin, ray.direction};
+    ray = Ray{origin, ray.direction, 0.0f, std::numeric_limits<float>::infinity(), time};
     return true;
   };
   for (;;) {
@@ -217,7 +221,7 @@ vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ra
     const Frame frame = Frame::from_normal(s.ns);
     const vec3 wo_local = frame.to_local(-ray.direction);
     const GltfBsdf bsdf(sp, wo_local, front ? sp.ior : 1.0f / sp.ior, frame);
-    const ShadingContext ctx{s, frame, bsdf, wo_local};
+    const ShadingContext ctx{s, frame, bsdf, wo_local, time};
     if (last) {  // no scattering left, but the straight pass is none: it goes on, weighted
       throughput *= bsdf.straight_transmittance();
       if (features_pending) feature_weight *= bsdf.straight_transmittance();
@@ -247,7 +251,7 @@ vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ra
       if (rng.next() >= survive) break;
       throughput /= survive;
     }
-    ray = Ray{ctx.origin_towards(wi), wi};
+    ray = Ray{ctx.origin_towards(wi), wi, 0.0f, std::numeric_limits<float>::infinity(), time};
   }
   if (!is_finite(radiance)) {
     ++counters.dropped;

@@ -34,8 +34,8 @@ struct PathCounters {
   std::uint64_t dropped = 0;  // samples dropped for a non-finite value
 };
 
-// Radiance arriving along `ray`. Never returns a non-finite value: such a sample is
-// counted in counters.dropped and returns zero.
+// Radiance arriving along `ray`, every ray of the path at ray.time. Never returns a
+// non-finite value: such a sample is counted in counters.dropped and returns zero.
 vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ray,
                 Sampler& rng, FirstHit& first, PathCounters& counters);
 
