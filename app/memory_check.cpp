@@ -52,9 +52,9 @@ MemoryEstimate estimate_render_memory(const SceneDescription& scene, int width, 
     m.film += pixels * (kOddBytesPerPixel + ((aovs.albedo ? 3 : 0) + (aovs.normal ? 3 : 0)) * kOddAovChannelBytes);
   for (const Image& img : scene.images)  // 8-bit stays RGBA8, deeper becomes float RGBA
     m.textures += static_cast<std::uint64_t>(img.width) * img.height * (img.bits_per_channel == 8 ? 4 : 16);
-  std::uint64_t triangles = 0;
-  for (const Mesh& mesh : scene.meshes)
-    for (const TriangleMesh& p : mesh.primitives) triangles += p.triangle_count();
+  std::uint64_t triangles = 0;  // a deforming mesh counts once per motion step: Embree's
+  for (const Mesh& mesh : scene.meshes)  // motion BVH and vertex buffers grow with them
+    for (const TriangleMesh& p : mesh.primitives) triangles += p.triangle_count() * (1 + p.motion_positions.size());
   m.bvh = triangles * kBvhBytesPerTriangle;
   m.environment = environment_texels(envmap_path) * kEnvironmentBytesPerTexel;
   return m;

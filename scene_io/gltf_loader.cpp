@@ -350,9 +350,9 @@ class Converter {
         prim.normals = std::move(shape.normals);
         prim.tangents = std::move(shape.tangents);
       } else {
-        prim.motion_positions.push_back(std::move(shape.positions));
-        prim.motion_normals.push_back(std::move(shape.normals));
-        prim.motion_tangents.push_back(std::move(shape.tangents));
+        prim.motion_positions.push_back(std::move(shape.positions));  // normals, tangents: only those it has
+        if (!shape.normals.empty()) prim.motion_normals.push_back(std::move(shape.normals));
+        if (!shape.tangents.empty()) prim.motion_tangents.push_back(std::move(shape.tangents));
       }
     }
     const auto differs = [](const auto& steps, const auto& first) {

@@ -92,6 +92,24 @@ TEST(FrameSequence, AnInterruptedSequenceContinuesToTheSameBits) {
   }
 }
 
+// --shutter end to end on a skinned mesh without normals (CesiumMan): the frame renders, its
+// header gives the shutter in scene seconds, and the blur changes the image.
+TEST(FrameSequence, ShutterBlursASkinAndRecordsTheShutter) {
+  const std::string dir = test::make_temp_dir("frame-sequence-shutter");
+  const std::string scene = test::scene_path("khronos/CesiumMan/glTF-Binary/CesiumMan.glb");
+  const std::string base = quote(test::tessera_exe()) + " render " + quote(scene) + " --width 32 --spp 4 -q --frame 20 ";
+  auto r = test::run_command(base + "--shutter -1,1 -o " + quote(dir + "/blur.exr"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_FLOAT_EQ(test::exr_float(dir + "/blur.exr", "shutterOpen"), 19.0f / 24.0f);
+  EXPECT_FLOAT_EQ(test::exr_float(dir + "/blur.exr", "shutterClose"), 21.0f / 24.0f);
+  r = test::run_command(base + "-o " + quote(dir + "/still.exr"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(test::exr_rgb(dir + "/blur.exr"), test::exr_rgb(dir + "/still.exr"));
+  r = test::run_command(base + "--shutter 0.5,0.5 -o " + quote(dir + "/closed.exr"));  // no time: no blur
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(test::exr_rgb(dir + "/closed.exr"), test::exr_rgb(dir + "/still.exr"));
+}
+
 TEST(FrameSequence, BadRangesAndCombinationsAreRefused) {
   const std::string dir = test::make_temp_dir("frame-sequence-bad");
   auto r = render("--frames 5:2 -o " + quote(dir + "/f.#.exr"));

@@ -274,6 +274,7 @@ TEST(GltfMotionSteps, EachStepIsTheSceneAtItsTime) {
   const SceneDescription bent = load_gltf(skin, skin_params).scene;
   const TriangleMesh& m = bent.meshes.at(0).primitives.at(0);
   ASSERT_EQ(m.motion_positions.size(), 1u);
+  EXPECT_TRUE(m.motion_normals.empty() && m.motion_tangents.empty());  // it has neither
   EXPECT_EQ(m.positions, load_gltf(skin, {"", "", "", 0.5f}).scene.meshes[0].primitives[0].positions);
   EXPECT_EQ(m.motion_positions[0], load_gltf(skin, {"", "", "", 1.0f}).scene.meshes[0].primitives[0].positions);
   // The bounds hold every step: the tip (-0.5, 2) turned 45 degrees about (0, 1) reaches

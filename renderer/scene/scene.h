@@ -134,7 +134,8 @@ struct TriangleMesh {
   int material = -1;  // -1 = the glTF default material
   // A mesh that deforms while the shutter is open (a skin, animated morph weights): its
   // positions, normals and tangents at motion steps 1 .. motion_steps - 1 (step 0 is the
-  // arrays above), each as long as `positions`. Empty: it keeps its shape.
+  // arrays above), each as long as `positions`; normals and tangents only when the mesh has
+  // them. Empty: it keeps its shape.
   std::vector<std::vector<glm::vec3>> motion_positions, motion_normals;
   std::vector<std::vector<glm::vec4>> motion_tangents;
 
