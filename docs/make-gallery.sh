@@ -95,5 +95,17 @@ for variant in none red green; do
       $([[ $variant == none ]] || echo --variant $variant) -o docs/images/gallery-variant-$variant.png
 done
 
+# --- Animation: a skinned walk as a frame sequence, and motion blur -----------------------------
+run tessera render scenes/khronos/CesiumMan/glTF-Binary/CesiumMan.glb --frames 0:42:6 \
+    --width 200 --height 260 --spp 64 --background 0.8,0.85,0.9 -o "$tmp/walk.##.png"
+run oiiotool "$tmp"/walk.{00,06,12,18,24,30,36,42}.png --mosaic 8x1 -o docs/images/gallery-cesium-walk.png
+for shutter in none -0.5,0.5; do
+  run tessera render scenes/khronos/BoxAnimated/glTF-Binary/BoxAnimated.glb --time 1.2 --fps 6 \
+      $([[ $shutter == none ]] || echo --shutter $shutter) --width 400 --spp 128 -o "$tmp/box-$shutter.png"
+done
+run oiiotool "$tmp/box-none.png" "$tmp/box--0.5,0.5.png" --mosaic 2x1 -o docs/images/gallery-motion-blur-box.png
+run tessera render scenes/khronos/CesiumMan/glTF-Binary/CesiumMan.glb --frame 20 --shutter -1,1 \
+    --width 400 --height 520 --spp 256 --background 0.8,0.85,0.9 -o docs/images/gallery-motion-blur-walk.png
+
 echo "make-gallery.sh: done in $((SECONDS - start)) s" >&2
 ls -l docs/images/gallery-* >&2
