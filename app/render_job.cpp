@@ -137,10 +137,11 @@ FrameJobResult render_frame_job(const RenderOptions& o, const FrameJob& job) {
 }
 
 Bounds3 animation_bounds(const RenderOptions& o, const GltfDocument& document) {
+  Bounds3 bounds;
+  if (!o.camera.empty()) return bounds;  // a camera of the file's: nothing to frame
   GltfLoadParams params{o.scene, o.variant, o.animation, 0.0f};
   const GltfLoadResult first = convert_gltf(document, params);
-  Bounds3 bounds;
-  if (first.playing.empty()) return bounds;
+  if (first.playing.empty() || !first.scene.cameras.empty()) return bounds;
   float start = first.animations[first.playing[0]].start, end = first.animations[first.playing[0]].end;
   for (int a : first.playing) start = std::min(start, first.animations[a].start), end = std::max(end, first.animations[a].end);
   constexpr int kTimes = 33;
