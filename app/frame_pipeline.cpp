@@ -74,6 +74,11 @@ void plan_sampling(const RenderOptions& o, RenderSettings& s) {
   s.time_limit = o.time_limit;
 }
 
+bool same_environment(const EnvironmentParams& a, const EnvironmentParams& b) {
+  return a.background == b.background && a.image_path == b.image_path && a.scale == b.scale &&
+         a.rotate_degrees == b.rotate_degrees;
+}
+
 }  // namespace
 
 std::string frame_output_path(const RenderOptions& o) {
@@ -141,10 +146,18 @@ FramePlan plan_frame(const RenderOptions& o, const GltfLoadResult& loaded, const
   return plan;
 }
 
-BuiltFrame build_frame(LoadedScene loaded, const FramePlan& plan) {
+BuiltFrame build_frame(LoadedScene loaded, const FramePlan& plan, SceneCache* cache) {
   const auto start = std::chrono::steady_clock::now();
   BuiltFrame built;
-  built.scene = std::make_unique<RenderScene>(std::move(loaded.gltf.scene), plan.environment);
+  if (cache && cache->scene && same_environment(cache->environment, plan.environment) &&
+      cache->scene->update(loaded.gltf.scene)) {
+    built.scene = cache->scene;
+    built.updated = true;
+  } else {
+    if (cache) cache->scene.reset();  // its memory is free before the new scene takes its own
+    built.scene = std::make_shared<RenderScene>(std::move(loaded.gltf.scene), plan.environment);
+    if (cache) *cache = {built.scene, plan.environment};
+  }
   built.seconds = seconds_since(start);
   const RenderSettings& s = plan.settings;
   built.camera = make_camera(plan.camera, s.width, s.height, plan.camera_params);

@@ -56,13 +56,24 @@ struct FramePlan {
 // `framing`: the bounds the automatic camera frames instead of the scene's (null: the scene's).
 FramePlan plan_frame(const RenderOptions& o, const GltfLoadResult& loaded, const Bounds3* framing = nullptr);
 
-// Stage 3: the BVH, textures and lights (the description is moved in), and the camera.
+// The render scene of the last frame built, kept for the next frame of the same document
+// (same --variant, --animation and shutter): what did not change is reused (textures, the
+// environment, the BVHs of what did not move).
+struct SceneCache {
+  std::shared_ptr<RenderScene> scene;
+  EnvironmentParams environment;
+};
+
+// Stage 3: the BVH, textures and lights (the description is moved in), and the camera. With
+// a cache, the cached scene is updated to this frame where it can be, else built anew (and
+// cached). Either way the image is the same, bit for bit.
 struct BuiltFrame {
-  std::unique_ptr<RenderScene> scene;
+  std::shared_ptr<RenderScene> scene;
   RenderCamera camera;
   double seconds = 0.0;
+  bool updated = false;  // the cached scene was updated, not built
 };
-BuiltFrame build_frame(LoadedScene loaded, const FramePlan& plan);
+BuiltFrame build_frame(LoadedScene loaded, const FramePlan& plan, SceneCache* cache = nullptr);
 
 // The EXR header and write options of a frame rendered with `plan`; `partial`: some pixel is
 // neither converged nor at --spp.

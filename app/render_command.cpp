@@ -197,6 +197,7 @@ int run_render(const RenderOptions& o) {
   Bounds3 framing = animation_bounds(o, document);
   const auto start = std::chrono::steady_clock::now();
   int rendered = 0, skipped = 0;
+  SceneCache scene_cache;  // what the frames share: textures, the environment, unmoved BVHs
   for (PlannedFrame& f : frames) {
     if (o.skip_existing) {
       const ExistingFrame existing = existing_frame(f.options.output);
@@ -209,7 +210,8 @@ int run_render(const RenderOptions& o) {
       if (existing == ExistingFrame::Partial) f.options.resume = f.options.output;
     }
     const bool first = rendered == 0;
-    const FrameJobResult done = render_frame_job(f.options, {&document, framing.empty() ? nullptr : &framing, f.label, first});
+    const FrameJobResult done =
+        render_frame_job(f.options, {&document, framing.empty() ? nullptr : &framing, f.label, first, &scene_cache});
     ++rendered;
     if (done.interrupted) return kExitInterrupted;
   }

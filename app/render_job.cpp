@@ -78,7 +78,7 @@ FrameJobResult render_frame_job(const RenderOptions& o, const FrameJob& job) {
   FramePlan plan = plan_frame(o, loaded.gltf, job.framing);
   const double load_seconds = loaded.seconds;
   const std::uint64_t triangles = loaded.triangles;
-  const BuiltFrame built = build_frame(std::move(loaded), plan);
+  const BuiltFrame built = build_frame(std::move(loaded), plan, job.scene_cache);
   RenderSettings& settings = plan.settings;
 
   const std::string resume_text = resume_settings(o, settings, built.camera, plan.environment,
@@ -128,8 +128,12 @@ FrameJobResult render_frame_job(const RenderOptions& o, const FrameJob& job) {
                                    result.film, resume_text, plan.denoise && !result.stats.cancelled);
   }
   if (!o.quiet) {
-    fmt::print(stderr, "tessera: {}: {} triangles; load {:.2f} s, BVH and textures {:.2f} s (BVH {:.2f} s), render {:.2f} s{}\n",
-               o.scene_path, triangles, load_seconds, built.seconds, built.scene->bvh_build_seconds, result.stats.seconds,
+    const std::string build =
+        built.updated ? fmt::format("scene updated in {:.2f} s ({} triangles rebuilt, textures kept)", built.seconds,
+                                    built.scene->rebuilt_triangles)
+                      : fmt::format("BVH and textures {:.2f} s (BVH {:.2f} s)", built.seconds, built.scene->bvh_build_seconds);
+    fmt::print(stderr, "tessera: {}: {} triangles; load {:.2f} s, {}, render {:.2f} s{}\n", o.scene_path, triangles,
+               load_seconds, build, result.stats.seconds,
                denoise_seconds > 0.0 ? fmt::format(", denoise {:.2f} s", denoise_seconds) : "");
     print_summary(o, plan.output, settings, result);
   }

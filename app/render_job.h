@@ -7,6 +7,7 @@
 #include <string>
 
 #include "app/commands.h"
+#include "app/frame_pipeline.h"
 #include "scene_io/gltf_loader.h"
 
 namespace tessera {
@@ -18,6 +19,8 @@ struct FrameJob {
   const Bounds3* framing = nullptr;
   std::string label;  // starts the progress line, e.g. "frame 12 (3 of 48)"
   bool print_warnings = true;  // the file's warnings: once per sequence
+  // The scene of the sequence's previous frame, updated for this one (null: built for it alone).
+  SceneCache* scene_cache = nullptr;
 };
 
 struct FrameJobResult {

@@ -1,6 +1,9 @@
 #include "app/resume_settings.h"
 
 #include <algorithm>
+#include <filesystem>
+#include <map>
+#include <tuple>
 #include <fstream>
 #include <sstream>
 #include <utility>
@@ -43,11 +46,22 @@ std::vector<std::pair<std::string, std::string>> parse_lines(const std::string& 
 }  // namespace
 
 std::string hash_file(const std::string& path) {
+  // A frame sequence fingerprints the same files for every frame: once per file, size and
+  // modification time is enough.
+  static std::map<std::tuple<std::string, std::uintmax_t, std::filesystem::file_time_type>, std::string> known;
+  std::error_code size_error, time_error;
+  const auto key = std::make_tuple(path, std::filesystem::file_size(path, size_error),
+                                   std::filesystem::last_write_time(path, time_error));
+  const bool keyed = !size_error && !time_error;
+  if (keyed)
+    if (auto it = known.find(key); it != known.end()) return it->second;
   std::ifstream in(path, std::ios::binary);
   if (!in) throw UsageError(path + ": cannot be read to fingerprint it");
   std::ostringstream bytes;
   bytes << in.rdbuf();
-  return fnv1a_hex(bytes.str());
+  std::string hash = fnv1a_hex(bytes.str());
+  if (keyed) known[key] = hash;
+  return hash;
 }
 
 std::string resume_settings(const RenderOptions& o, const RenderSettings& s, const RenderCamera& camera,

@@ -12,6 +12,57 @@ EmbreeDevice::EmbreeDevice() {
 
 EmbreeDevice::~EmbreeDevice() { rtcReleaseDevice(device_); }
 
+namespace {
+
+// Takes `next`'s vertex arrays where they differ from `now`'s; true if they did.
+bool take_vertices(TriangleMesh& now, TriangleMesh& next) {
+  if (now.positions == next.positions && now.normals == next.normals && now.tangents == next.tangents &&
+      now.texcoords0 == next.texcoords0 && now.texcoords1 == next.texcoords1 && now.colors == next.colors &&
+      now.motion_positions == next.motion_positions && now.motion_normals == next.motion_normals &&
+      now.motion_tangents == next.motion_tangents)
+    return false;
+  std::swap(now.positions, next.positions);
+  std::swap(now.normals, next.normals);
+  std::swap(now.tangents, next.tangents);
+  std::swap(now.texcoords0, next.texcoords0);
+  std::swap(now.texcoords1, next.texcoords1);
+  std::swap(now.colors, next.colors);
+  std::swap(now.motion_positions, next.motion_positions);
+  std::swap(now.motion_normals, next.motion_normals);
+  std::swap(now.motion_tangents, next.motion_tangents);
+  return true;
+}
+
+}  // namespace
+
+bool RenderScene::update(SceneDescription& next) {
+  if (next.materials.size() != description.materials.size() || next.images.size() != description.images.size() ||
+      !geometry->can_update(next))
+    return false;
+  const auto start = std::chrono::steady_clock::now();
+  // In place: the BVH, the filters and the lights keep pointers to these meshes.
+  std::vector<std::vector<char>> changed_primitives(description.meshes.size());
+  for (std::size_t m = 0; m < description.meshes.size(); ++m)
+    for (std::size_t p = 0; p < description.meshes[m].primitives.size(); ++p)
+      changed_primitives[m].push_back(take_vertices(description.meshes[m].primitives[p], next.meshes[m].primitives[p]));
+  std::vector<char> changed_instances;
+  for (std::size_t i = 0; i < description.instances.size(); ++i) {
+    Instance &now = description.instances[i], &then = next.instances[i];
+    changed_instances.push_back(now.object_to_world != then.object_to_world || now.motion != then.motion);
+    now.object_to_world = then.object_to_world;
+    std::swap(now.motion, then.motion);
+  }
+  description.cameras = std::move(next.cameras);
+  description.lights = std::move(next.lights);
+  description.bounds = next.bounds;
+  description.shutter_open = next.shutter_open;
+  description.shutter_close = next.shutter_close;
+  rebuilt_triangles = geometry->update(changed_primitives, changed_instances);
+  bvh_build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  area_lights = std::make_unique<AreaLights>(description, *geometry, materials);
+  return true;
+}
+
 RenderScene::RenderScene(SceneDescription scene, const EnvironmentParams& env)
     : description(std::move(scene)), environment(env), materials(description) {
   const auto start = std::chrono::steady_clock::now();

@@ -112,9 +112,13 @@ SceneGeometry::SceneGeometry(const SceneDescription& scene, RTCDevice device, co
   deforms_.resize(scene.meshes.size());
   for (std::size_t m = 0; m < scene.meshes.size(); ++m)
     for (const TriangleMesh& prim : scene.meshes[m].primitives) deforms_[m].push_back(mesh_deforms(prim));
+  for (const Instance& inst : scene.instances) instance_moves_.push_back(instance_moves(inst));
   top_ = rtcNewScene(device_);
-  rtcSetSceneFlags(top_, RTC_SCENE_FLAG_ROBUST);
-  rtcSetSceneBuildQuality(top_, RTC_BUILD_QUALITY_HIGH);
+  // Dynamic with low quality selects Embree's two-level builder, which keeps the BVH of every
+  // triangle list that no update touched (either alone still rebuilds everything); each list's
+  // own BVH is a full SAH build (the geometry's quality, medium).
+  rtcSetSceneFlags(top_, scene.animated ? RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_DYNAMIC : RTC_SCENE_FLAG_ROBUST);
+  rtcSetSceneBuildQuality(top_, scene.animated ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_HIGH);
   std::map<int, std::vector<const Instance*>> by_mesh;
   for (const Instance& inst : scene.instances) by_mesh[inst.mesh].push_back(&inst);
   std::size_t baked_count = 0;
@@ -129,7 +133,7 @@ SceneGeometry::SceneGeometry(const SceneDescription& scene, RTCDevice device, co
     for (const TriangleMesh& prim : scene.meshes[mesh].primitives) tris += prim.triangle_count();
     unique_triangles_ += tris;
     instanced_triangles_ += tris * placements.size();
-    if (baked(placements)) add_baked(scene.meshes[mesh], placements[0]->object_to_world, deforms_[mesh]);
+    if (baked(placements)) add_baked(mesh, static_cast<int>(placements[0] - scene.instances.data()));
     else add_instanced(mesh, placements);
   }
   rtcCommitScene(top_);
@@ -170,6 +174,84 @@ void SceneGeometry::check_motion(const SceneDescription& scene) const {
   }
 }
 
+namespace {
+
+// Same triangles, attributes, material and motion steps; the vertex values may differ.
+bool same_layout(const TriangleMesh& a, const TriangleMesh& b) {
+  auto steps_alike = [](const auto& x, const auto& y) {
+    if (x.size() != y.size()) return false;
+    for (std::size_t k = 0; k < x.size(); ++k)
+      if (x[k].size() != y[k].size()) return false;
+    return true;
+  };
+  return a.indices == b.indices && a.material == b.material && a.positions.size() == b.positions.size() &&
+         a.normals.size() == b.normals.size() && a.tangents.size() == b.tangents.size() &&
+         a.texcoords0.size() == b.texcoords0.size() && a.texcoords1.size() == b.texcoords1.size() &&
+         a.colors.size() == b.colors.size() && steps_alike(a.motion_positions, b.motion_positions) &&
+         steps_alike(a.motion_normals, b.motion_normals) && steps_alike(a.motion_tangents, b.motion_tangents);
+}
+
+}  // namespace
+
+bool SceneGeometry::can_update(const SceneDescription& next) const {
+  if (std::max(next.motion_steps, 1) != steps_ || next.animated != scene_.animated ||
+      next.meshes.size() != scene_.meshes.size() || next.instances.size() != scene_.instances.size())
+    return false;
+  for (std::size_t i = 0; i < next.instances.size(); ++i)
+    if (next.instances[i].mesh != scene_.instances[i].mesh || instance_moves(next.instances[i]) != (instance_moves_[i] != 0))
+      return false;
+  for (std::size_t m = 0; m < next.meshes.size(); ++m) {
+    const auto &now = scene_.meshes[m].primitives, &then = next.meshes[m].primitives;
+    if (now.size() != then.size()) return false;
+    for (std::size_t p = 0; p < now.size(); ++p)
+      if (!same_layout(now[p], then[p]) || mesh_deforms(then[p]) != (deforms_[m][p] != 0)) return false;
+  }
+  return true;
+}
+
+std::uint64_t SceneGeometry::update(const std::vector<std::vector<char>>& changed_primitives,
+                                    const std::vector<char>& changed_instances) {
+  std::uint64_t rebuilt = 0;
+  for (std::size_t k = 0; k < baked_.size(); ++k) {
+    const BakedSource& src = baked_sources_[k];
+    if (!changed_primitives[src.mesh][src.primitive] && !changed_instances[src.instance]) continue;
+    const bool deforms = deforms_[src.mesh][src.primitive];
+    baked_[k] = to_world_space(scene_.meshes[src.mesh].primitives[src.primitive],
+                               scene_.instances[src.instance].object_to_world, deforms);
+    RTCGeometry geom = rtcGetGeometry(top_, src.geom);
+    fill_buffers(geom, baked_[k], vertex_steps(baked_[k], deforms));
+    rtcCommitGeometry(geom);
+    rebuilt += baked_[k].triangle_count();
+  }
+  std::vector<char> reshaped(scene_.meshes.size(), 0);  // an instanced mesh whose BVH was rebuilt
+  for (std::size_t m = 0; m < prototypes_.size(); ++m) {
+    if (!prototypes_[m]) continue;
+    const auto& prims = scene_.meshes[m].primitives;
+    for (std::size_t p = 0; p < prims.size(); ++p) {
+      if (!changed_primitives[m][p]) continue;
+      RTCGeometry geom = rtcGetGeometry(prototypes_[m], static_cast<unsigned>(p));
+      fill_buffers(geom, prims[p], vertex_steps(prims[p], deforms_[m][p]));
+      rtcCommitGeometry(geom);
+      rebuilt += prims[p].triangle_count();
+      reshaped[m] = 1;
+    }
+    if (reshaped[m]) rtcCommitScene(prototypes_[m]);
+  }
+  for (std::uint32_t id = 0; id < top_is_instance_.size(); ++id) {
+    if (!top_is_instance_[id]) continue;
+    InstanceRecord& rec = top_instances_[id];
+    if (!changed_instances[rec.instance] && !reshaped[rec.mesh]) continue;
+    const Instance& inst = scene_.instances[rec.instance];
+    RTCGeometry geom = rtcGetGeometry(top_, id);
+    set_instance_transform(geom, inst, instance_moves_[rec.instance]);
+    rtcCommitGeometry(geom);
+    rec.to_world = inst.object_to_world;
+  }
+  rtcCommitScene(top_);
+  if (rtcGetDeviceError(device_) != RTC_ERROR_NONE) throw std::runtime_error("Embree could not update the scene's BVH");
+  return rebuilt;
+}
+
 bool SceneGeometry::instance_moves(const Instance& inst) const {
   return steps_ > 1 && std::any_of(inst.motion.begin(), inst.motion.end(),
                                    [&](const glm::mat4& m) { return m != inst.object_to_world; });
@@ -183,32 +265,55 @@ bool SceneGeometry::mesh_deforms(const TriangleMesh& mesh) const {
 
 unsigned SceneGeometry::attach_triangles(RTCScene target, const TriangleMesh& mesh, bool deforms) {
   RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-  // One vertex buffer per motion step when the positions move; Embree interpolates them.
-  const unsigned steps = deforms && !mesh.motion_positions.empty() ? static_cast<unsigned>(steps_) : 1u;
+  const unsigned steps = vertex_steps(mesh, deforms);
   if (steps > 1) rtcSetGeometryTimeStepCount(geom, steps);
-  for (unsigned k = 0; k < steps; ++k) {
-    const std::vector<vec3>& positions = k == 0 ? mesh.positions : mesh.motion_positions[k - 1];
-    // Embree may read 16 bytes at the last vertex: its own buffers are padded for that.
-    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
-        geom, RTC_BUFFER_TYPE_VERTEX, k, RTC_FORMAT_FLOAT3, 3 * sizeof(float), positions.size()));
-    if (!vertices) {
-      rtcReleaseGeometry(geom);
-      throw std::runtime_error("Embree could not allocate geometry buffers (out of memory?)");
-    }
-    std::memcpy(vertices, positions.data(), positions.size() * sizeof(vec3));
-  }
-  auto* indices = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(
-      geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(std::uint32_t), mesh.triangle_count()));
-  if (!indices) {
+  // Embree may read 16 bytes at the last vertex: its own buffers are padded for that.
+  bool allocated = true;
+  for (unsigned k = 0; k < steps; ++k)
+    allocated = allocated && rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, k, RTC_FORMAT_FLOAT3,
+                                                     3 * sizeof(float), mesh.positions.size());
+  allocated = allocated && rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                   3 * sizeof(std::uint32_t), mesh.triangle_count());
+  if (!allocated) {
     rtcReleaseGeometry(geom);
     throw std::runtime_error("Embree could not allocate geometry buffers (out of memory?)");
   }
-  std::memcpy(indices, mesh.indices.data(), mesh.triangle_count() * 3 * sizeof(std::uint32_t));
+  fill_buffers(geom, mesh, steps);
   install_filters(geom, mesh);
   rtcCommitGeometry(geom);
   const unsigned id = rtcAttachGeometry(target, geom);
   rtcReleaseGeometry(geom);
   return id;
+}
+
+unsigned SceneGeometry::vertex_steps(const TriangleMesh& mesh, bool deforms) const {
+  // One vertex buffer per motion step when the positions move; Embree interpolates them.
+  return deforms && !mesh.motion_positions.empty() ? static_cast<unsigned>(steps_) : 1u;
+}
+
+void SceneGeometry::fill_buffers(RTCGeometry geom, const TriangleMesh& mesh, unsigned steps) const {
+  for (unsigned k = 0; k < steps; ++k) {
+    const std::vector<vec3>& positions = k == 0 ? mesh.positions : mesh.motion_positions[k - 1];
+    std::memcpy(rtcGetGeometryBufferData(geom, RTC_BUFFER_TYPE_VERTEX, k), positions.data(),
+                positions.size() * sizeof(vec3));
+    rtcUpdateGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, k);
+  }
+  // Indices too: a placement that turns mirroring reverses the winding of a baked copy.
+  std::memcpy(rtcGetGeometryBufferData(geom, RTC_BUFFER_TYPE_INDEX, 0), mesh.indices.data(),
+              mesh.indices.size() * sizeof(std::uint32_t));
+  rtcUpdateGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0);
+}
+
+void SceneGeometry::set_instance_transform(RTCGeometry geom, const Instance& inst, bool moving) const {
+  if (!moving) {
+    rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &inst.object_to_world[0][0]);
+    return;
+  }
+  glm::quat previous(1.0f, 0.0f, 0.0f, 0.0f);
+  for (int k = 0; k < steps_; ++k) {
+    const RTCQuaternionDecomposition qd = embree_parts(k == 0 ? inst.object_to_world : inst.motion[k - 1], previous);
+    rtcSetGeometryTransformQuaternion(geom, static_cast<unsigned>(k), &qd);
+  }
 }
 
 namespace {
@@ -313,10 +418,13 @@ void SceneGeometry::install_filters(RTCGeometry geom, const TriangleMesh& mesh) 
   rtcSetGeometryOccludedFilterFunction(geom, shadow_filter);
 }
 
-void SceneGeometry::add_baked(const Mesh& mesh, const glm::mat4& to_world, const std::vector<char>& deforms) {
+void SceneGeometry::add_baked(int mesh_index, int instance) {
+  const Mesh& mesh = scene_.meshes[mesh_index];
+  const std::vector<char>& deforms = deforms_[mesh_index];
   for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
-    baked_.push_back(to_world_space(mesh.primitives[p], to_world, deforms[p]));
+    baked_.push_back(to_world_space(mesh.primitives[p], scene_.instances[instance].object_to_world, deforms[p]));
     const unsigned id = attach_triangles(top_, baked_.back(), deforms[p]);
+    baked_sources_.push_back({mesh_index, static_cast<int>(p), instance, id});
     top_geometry_.resize(id + 1, Placement{nullptr});
     top_is_instance_.resize(id + 1, false);
     top_geometry_[id] = Placement{&baked_.back()};
@@ -339,24 +447,17 @@ void SceneGeometry::add_instanced(int mesh_index, const std::vector<const Instan
   for (const Instance* inst : placements) {
     RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
     rtcSetGeometryInstancedScene(geom, proto);
-    const bool moving = instance_moves(*inst);
-    if (moving) {
-      rtcSetGeometryTimeStepCount(geom, static_cast<unsigned>(steps_));
-      glm::quat previous(1.0f, 0.0f, 0.0f, 0.0f);
-      for (int k = 0; k < steps_; ++k) {
-        const RTCQuaternionDecomposition qd = embree_parts(k == 0 ? inst->object_to_world : inst->motion[k - 1], previous);
-        rtcSetGeometryTransformQuaternion(geom, static_cast<unsigned>(k), &qd);
-      }
-      moves_ = true;
-    } else {
-      rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &inst->object_to_world[0][0]);
-    }
+    const int index = static_cast<int>(inst - scene_.instances.data());
+    const bool moving = instance_moves_[index];
+    if (moving) rtcSetGeometryTimeStepCount(geom, static_cast<unsigned>(steps_));
+    set_instance_transform(geom, *inst, moving);
+    moves_ = moves_ || moving;
     rtcCommitGeometry(geom);
     const unsigned id = rtcAttachGeometry(top_, geom);
     if (!moving) rtcReleaseGeometry(geom);  // a moving one is kept, to ask for its transform at a time
     top_instances_.resize(id + 1);
     top_is_instance_.resize(id + 1, false);
-    top_instances_[id] = {mesh_index, inst->object_to_world, moving ? geom : nullptr};
+    top_instances_[id] = {mesh_index, index, inst->object_to_world, moving ? geom : nullptr};
     top_is_instance_[id] = true;
   }
 }

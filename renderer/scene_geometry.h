@@ -1,6 +1,10 @@
 // The scene's triangles in Embree: one BVH over the world. A mesh placed once is baked into
 // world space in the top-level BVH; a mesh placed several times is built once as its own
 // BVH and placed with Embree instances, so memory does not grow with placements.
+// An animated scene (SceneDescription::animated) is built as Embree's two-level BVH (scene
+// build quality low): each triangle list has its own BVH, kept until update() changes it, and
+// the top level is rebuilt over them. So the next frame's description rebuilds only what
+// moved; a frame built fresh gets the same BVHs, hence the same image bit for bit.
 // Motion blur (SceneDescription::motion_steps > 1): a deforming mesh gets one Embree vertex
 // buffer per motion step; a placement that moves is an Embree instance with a transform per
 // step in parts (RTCQuaternionDecomposition), so that rotations turn rather than shrink.
@@ -92,6 +96,16 @@ class SceneGeometry {
   };
   std::vector<PlacedPrimitive> placed_primitives() const;
 
+  // Whether `next` (another frame of the same scene, as SceneDescription::animated scenes
+  // have) has the structure built here: the same meshes, triangles, attributes and materials,
+  // the same placements, and the same of them moving or deforming over the shutter.
+  bool can_update(const SceneDescription& next) const;
+  // After the description this was built from has taken over next's vertex arrays and
+  // placements (the primitives in `changed_primitives` [mesh][primitive], the placements in
+  // `changed_instances`), re-reads those and rebuilds their BVHs, and the top level; the rest
+  // is kept. Returns the number of triangles whose BVH was rebuilt.
+  std::uint64_t update(const std::vector<std::vector<char>>& changed_primitives, const std::vector<char>& changed_instances);
+
   // Whether anything moves while the shutter is open, and the motion steps the scene has.
   bool moves() const { return moves_; }
   int motion_steps() const { return steps_; }
@@ -112,6 +126,7 @@ class SceneGeometry {
   };
   struct InstanceRecord {  // a top-level Embree instance: a placed multi-primitive mesh
     int mesh;
+    int instance;  // in scene_.instances
     glm::mat4 to_world;  // at the shutter's opening
     RTCGeometry moving = nullptr;  // a placement that moves: Embree gives its transform at a time
   };
@@ -119,9 +134,13 @@ class SceneGeometry {
   void check_motion(const SceneDescription& scene) const;
   bool instance_moves(const Instance& inst) const;
   bool mesh_deforms(const TriangleMesh& mesh) const;
-  void add_baked(const Mesh& mesh, const glm::mat4& to_world, const std::vector<char>& deforms);
+  void add_baked(int mesh_index, int instance);
   void add_instanced(int mesh_index, const std::vector<const Instance*>& placements);
   unsigned attach_triangles(RTCScene target, const TriangleMesh& mesh, bool deforms);
+  unsigned vertex_steps(const TriangleMesh& mesh, bool deforms) const;  // Embree's vertex buffers
+  // Copies the mesh's positions (every motion step Embree has) and indices into geom's buffers.
+  void fill_buffers(RTCGeometry geom, const TriangleMesh& mesh, unsigned steps) const;
+  void set_instance_transform(RTCGeometry geom, const Instance& inst, bool moving) const;
   void install_filters(RTCGeometry geom, const TriangleMesh& mesh);
   // Where the hit's triangles stand: a baked mesh's placement, or an instance's (at the hit's
   // time) made in `scratch`.
@@ -139,10 +158,16 @@ class SceneGeometry {
   RTCScene top_ = nullptr;
   std::vector<RTCScene> prototypes_;  // one per instanced mesh, indexed like scene_.meshes
   std::vector<TriangleMesh> baked_;  // world-space copies of meshes placed once
+  struct BakedSource {
+    int mesh, primitive, instance;
+    unsigned geom;  // its top-level id
+  };
+  std::vector<BakedSource> baked_sources_;  // what each of baked_ was made from
   std::vector<Placement> top_geometry_;  // by top-level geomID (baked triangles)
   std::vector<InstanceRecord> top_instances_;  // by top-level geomID (instances)
   std::vector<bool> top_is_instance_;
   std::vector<std::vector<char>> deforms_;  // [mesh][primitive]: vertex arrays with motion steps
+  std::vector<char> instance_moves_;  // [instance]: moves while the shutter is open
   int steps_ = 1;  // motion steps: 1 = no motion blur
   bool moves_ = false;
   std::uint64_t unique_triangles_ = 0, instanced_triangles_ = 0;

@@ -84,6 +84,8 @@ class Converter {
     result_.playing = choose_animations(result_.animations, params.animation, file_);
     result_.skins = read_skins(model_, reader_, file_);
     pose_steps(params);
+    out_.animated = std::any_of(result_.playing.begin(), result_.playing.end(),
+                                [&](int a) { return !result_.animations[a].channels.empty(); });
     for (const tinygltf::Mesh& m : model_.meshes)
       result_.morph_meshes += std::any_of(m.primitives.begin(), m.primitives.end(),
                                           [](const tinygltf::Primitive& p) { return !p.targets.empty(); });

@@ -63,6 +63,24 @@ TEST(FrameSequence, WritesExactlyTheNumberedFrames) {
   EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(float)), 0);
 }
 
+// BoxAnimated: node 2 (inner_box, 62 triangles) turns under an animated parent, node 3
+// (outer_box, 192 triangles) stands still. After the first frame, each frame updates the
+// scene built for the one before: only the inner box's BVH is rebuilt; the frames are the
+// same as rendered alone (above).
+TEST(FrameSequence, LaterFramesRebuildOnlyWhatMoves) {
+  const std::string dir = test::make_temp_dir("frame-sequence-update");
+  const auto r = render("--frames 0:2 -o " + quote(dir + "/f.#.exr"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto count = [&](const std::string& what) {
+    std::size_t n = 0;
+    for (std::size_t at = r.err.find(what); at != std::string::npos; at = r.err.find(what, at + 1)) ++n;
+    return n;
+  };
+  EXPECT_EQ(count("254 triangles; load"), 3u) << r.err;
+  EXPECT_EQ(count("BVH and textures"), 1u) << r.err;
+  EXPECT_EQ(count("(62 triangles rebuilt, textures kept)"), 2u) << r.err;
+}
+
 // What an interrupted sequence leaves: frames 0 and 1 finished, frame 2 partial (stopped after
 // its first sample wave), frame 3 never started; and a stranger file standing for frame 4.
 // Rerun with --skip-existing, frames 0, 1 and 4 are kept, 2 continues, 3 renders: every frame

@@ -202,6 +202,9 @@ struct SceneDescription {
   // the opening and the last at the closing. 1: no motion blur, everything at shutter_open.
   float shutter_open = 0.0f, shutter_close = 0.0f;
   int motion_steps = 1;
+  // The scene changes with the scene time (an animation plays): the renderer builds it so
+  // that the next frame's description can update it, rebuilding only what moved.
+  bool animated = false;
 };
 
 }  // namespace tessera
