@@ -14,6 +14,23 @@ EmbreeDevice::~EmbreeDevice() { rtcReleaseDevice(device_); }
 
 namespace {
 
+// The lights' transforms over the shutter, for those that move.
+std::vector<MotionTransform> light_motions(const SceneDescription& scene) {
+  std::vector<MotionTransform> out;
+  for (const PunctualLight& light : scene.lights) {
+    if (light.motion.empty() || scene.motion_steps < 2) {
+      out.emplace_back();
+      continue;
+    }
+    if (light.motion.size() != static_cast<std::size_t>(scene.motion_steps - 1))
+      throw std::invalid_argument("light " + light.name + " does not have motion_steps - 1 motion steps");
+    std::vector<glm::mat4> steps{light.light_to_world};
+    steps.insert(steps.end(), light.motion.begin(), light.motion.end());
+    out.emplace_back(steps);
+  }
+  return out;
+}
+
 // Takes `next`'s vertex arrays where they differ from `now`'s; true if they did.
 bool take_vertices(TriangleMesh& now, TriangleMesh& next) {
   if (now.positions == next.positions && now.normals == next.normals && now.tangents == next.tangents &&
@@ -54,6 +71,7 @@ bool RenderScene::update(SceneDescription& next) {
   }
   description.cameras = std::move(next.cameras);
   description.lights = std::move(next.lights);
+  light_motion = light_motions(description);
   description.bounds = next.bounds;
   description.shutter_open = next.shutter_open;
   description.shutter_close = next.shutter_close;
@@ -69,6 +87,7 @@ RenderScene::RenderScene(SceneDescription scene, const EnvironmentParams& env)
   geometry = std::make_unique<SceneGeometry>(description, device.get(), &materials);
   bvh_build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   area_lights = std::make_unique<AreaLights>(description, *geometry, materials);
+  light_motion = light_motions(description);
 }
 
 }  // namespace tessera

@@ -4,11 +4,13 @@
 
 #include <embree3/rtcore.h>
 
+#include <algorithm>
 #include <memory>
 
 #include "renderer/environment.h"
 #include "renderer/integrator/area_lights.h"
 #include "renderer/integrator/materials.h"
+#include "renderer/motion.h"
 #include "renderer/scene/scene.h"
 #include "renderer/scene_geometry.h"
 
@@ -37,10 +39,16 @@ struct RenderScene {
   MaterialTable materials;
   std::unique_ptr<SceneGeometry> geometry;
   std::unique_ptr<AreaLights> area_lights;  // emissive triangles
+  // Per punctual light (description.lights): its transform over the shutter when it moves,
+  // decomposed once; empty when it stands still.
+  std::vector<MotionTransform> light_motion;
   double bvh_build_seconds = 0.0;
 
   // Something moves or deforms while the shutter is open (the camera aside).
-  bool moves() const { return geometry->moves(); }
+  bool moves() const {
+    return geometry->moves() ||
+           std::any_of(light_motion.begin(), light_motion.end(), [](const MotionTransform& m) { return !m.empty(); });
+  }
 
   // Makes this the scene `next` describes, when next is another frame of the same file and
   // variant (the same materials and images, which are not compared) with the structure built

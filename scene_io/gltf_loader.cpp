@@ -205,7 +205,7 @@ class Converter {
       if (node.mesh >= 0) add_instance(node, index);
       if (node.camera >= 0) add_camera(node, index);
       if (auto it = node.extensions.find("KHR_lights_punctual"); it != node.extensions.end())
-        add_light(it->second, index, world(index, 0));
+        add_light(it->second, index);
       stack.insert(stack.end(), node.children.rbegin(), node.children.rend());
     }
   }
@@ -415,7 +415,9 @@ class Converter {
     return glm::mat4(glm::vec4(x, 0), glm::vec4(y, 0), glm::vec4(z, 0), world[3]);
   }
 
-  void add_light(const tinygltf::Value& ext, int index, const glm::mat4& world) {
+  void add_light(const tinygltf::Value& ext, int index) {
+    const std::vector<glm::mat4> placed = worlds(index);
+    const glm::mat4& world = placed[0];
     const int light = ext.Has("light") ? ext.Get("light").GetNumberAsInt() : -1;
     if (light < 0 || light >= static_cast<int>(model_.lights.size()))
       fail(fmt::format("node {} refers to light {}, but the file has {}", index, light,
@@ -435,9 +437,12 @@ class Converter {
     l.outer_cone_angle = static_cast<float>(src.spot.outerConeAngle);
     l.position = glm::vec3(world[3]);
     l.direction = glm::normalize(glm::vec3(world * glm::vec4(0, 0, -1, 0)));
-    const bool finite = all_finite((l.color)) && std::isfinite(l.intensity) &&
-                        all_finite((l.direction)) && l.intensity >= 0;
+    l.light_to_world = world;
+    bool finite = all_finite((l.color)) && std::isfinite(l.intensity) && l.intensity >= 0;
+    for (const glm::mat4& w : placed) finite = finite && all_finite(glm::normalize(glm::vec3(w * glm::vec4(0, 0, -1, 0))));
     if (!finite) fail(fmt::format("light {} has an invalid color, intensity or direction", light));
+    if (std::any_of(placed.begin(), placed.end(), [&](const glm::mat4& m) { return m != world; }))
+      l.motion.assign(placed.begin() + 1, placed.end());
     out_.lights.push_back(l);
   }
 

@@ -282,5 +282,36 @@ TEST(GltfMotionSteps, EachStepIsTheSceneAtItsTime) {
   EXPECT_NEAR(bent.bounds.lo.x, -0.5f * std::cos(0.7854f) - std::sin(0.7854f), 2e-3f);
 }
 
+// A point light on a node that slides from (0, 2, 0) to (1, 2, 0) over one second: with a
+// shutter over the second half, its position at the opening and its node's transform at the
+// closing; without a shutter, where the node is at the frame's time and no motion.
+TEST(GltfMotionSteps, LightsFollowTheirNodesOverTheShutter) {
+  const std::string json = R"({
+    "asset": {"version": "2.0"}, "extensionsUsed": ["KHR_lights_punctual"],
+    "extensions": {"KHR_lights_punctual": {"lights": [{"type": "point", "intensity": 3}]}},
+    "scenes": [{"nodes": [0]}],
+    "nodes": [{"extensions": {"KHR_lights_punctual": {"light": 0}}}],
+    "buffers": [{"byteLength": 32, "uri": "data:application/octet-stream;base64,AAAAAAAAgD8AAAAAAAAAQAAAAAAAAIA/AAAAQAAAAAA="}],
+    "bufferViews": [{"buffer": 0, "byteLength": 8}, {"buffer": 0, "byteOffset": 8, "byteLength": 24}],
+    "accessors": [{"bufferView": 0, "componentType": 5126, "count": 2, "type": "SCALAR", "min": [0], "max": [1]},
+                  {"bufferView": 1, "componentType": 5126, "count": 2, "type": "VEC3"}],
+    "animations": [{"samplers": [{"input": 0, "output": 1}], "channels": [{"sampler": 0, "target": {"node": 0, "path": "translation"}}]}]
+  })";
+  const std::vector<std::uint8_t> bytes(json.begin(), json.end());
+  GltfLoadParams params{"", "", "", 0.5f};
+  params.shutter_close = 0.5f, params.motion_steps = 2;
+  const SceneDescription blurred = load_gltf_from_memory(bytes, "light.gltf", ".", params).scene;
+  ASSERT_EQ(blurred.lights.size(), 1u);
+  const PunctualLight& light = blurred.lights[0];
+  EXPECT_EQ(light.position, glm::vec3(0.5f, 2.0f, 0.0f));
+  ASSERT_EQ(light.motion.size(), 1u);
+  EXPECT_EQ(glm::vec3(light.motion[0][3]), glm::vec3(1.0f, 2.0f, 0.0f));
+  EXPECT_TRUE(blurred.animated);
+  const SceneDescription still = load_gltf_from_memory(bytes, "light.gltf", ".", {"", "", "", 0.25f}).scene;
+  EXPECT_EQ(still.lights.at(0).position, glm::vec3(0.25f, 2.0f, 0.0f));
+  EXPECT_TRUE(still.lights[0].motion.empty());
+  EXPECT_FALSE(load_gltf_from_memory(bytes, "light.gltf", ".", {"", "", "none", 0.25f}).scene.animated);
+}
+
 }  // namespace
 }  // namespace tessera

@@ -373,6 +373,70 @@ TEST(RenderMotionBlur, MovingLightIsSampledWhereItIsAtThePathsTime) { expect_lig
 
 TEST(RenderMotionBlur, GrowingLightIsSampledWithItsAreaAtThePathsTime) { expect_light_sampling_agrees(true); }
 
+// Punctual lights follow their node over the shutter. A point light of 1 cd at height h slides
+// from x = -a to x = a above a floor of albedo rho: the floor's radiance is rho / pi times the
+// time-averaged irradiance, h / (2a) [u / (c^2 sqrt(u^2 + c^2))] from u = -a - x to a - x, with
+// c^2 = h^2 + z^2. A directional light of 1 lux tilting from -theta to theta about z (slerp:
+// the angle linear in time) gives rho / pi sin(theta) / theta everywhere.
+TEST(RenderMotionBlur, PunctualLightsMoveWithTheirNodes) {
+  constexpr double kRho = 0.5, kA = 0.6, kH = 0.5, kTheta = 1.0;
+  auto floor_scene = [&](const PunctualLight& light) {
+    SceneDescription d;
+    d.motion_steps = 2;
+    test::add_mesh(d, test::make_quad({0, 0, 0}, {2, 0, 0}, {0, 0, -2}, test::add_material(d, test::diffuse(vec3(kRho)))));
+    d.lights.push_back(light);
+    return d;
+  };
+  Camera cam;  // looking straight down at the floor: x right, z down
+  cam.projection = Camera::Projection::Orthographic;
+  cam.xmag = cam.ymag = 1.0f;
+  cam.camera_to_world = glm::inverse(glm::lookAtRH(vec3(0, 0.25f, 0), vec3(0, 0, 0), vec3(0, 0, -1)));
+  RenderSettings s;
+  s.width = s.height = kFloorPx;
+  s.spp = 64;
+  s.max_bounces = 1;
+  s.filter = {PixelFilterKind::box, 0.0f};
+
+  PunctualLight point;
+  point.light_to_world = translate(-kA, kH);
+  point.position = vec3(point.light_to_world[3]);
+  point.motion = {translate(kA, kH)};
+  const FrameImage img = render(floor_scene(point), cam, s);
+  auto expected = [&](double x, double z) {
+    const double c2 = kH * kH + z * z;
+    auto f = [&](double u) { return u / (c2 * std::sqrt(u * u + c2)); };
+    return kRho / M_PI * kH / (2 * kA) * (f(kA - x) - f(-kA - x));
+  };
+  std::vector<double> residuals[4];
+  const double size = 2.0 / kFloorPx;
+  for (int py = 0; py < kFloorPx; ++py)
+    for (int px = 0; px < kFloorPx; ++px) {
+      double e = 0.0;  // the pixel's mean over a 3 x 3 grid
+      for (int j = 0; j < 3; ++j)
+        for (int i = 0; i < 3; ++i) e += expected(-1.0 + (px + (i + 0.5) / 3) * size, -1.0 + (py + (j + 0.5) / 3) * size) / 9;
+      residuals[px * 4 / kFloorPx].push_back(red(img, px, py) - e);
+    }
+  for (int k = 0; k < 4; ++k) {
+    const std::vector<double>& r = residuals[k];
+    double mean = 0.0, var = 0.0;
+    for (double v : r) mean += v / r.size();
+    for (double v : r) var += (v - mean) * (v - mean) / (r.size() - 1);
+    // The floor's radiance there is 0.05 to 0.5: the test resolves a few thousandths.
+    EXPECT_NEAR(mean, 0.0, 4.0 * std::sqrt(var / r.size()) + 1e-4) << "point light, strip " << k;
+  }
+
+  PunctualLight sun;
+  sun.type = PunctualLight::Type::Directional;
+  const glm::mat4 down = glm::rotate(glm::mat4(1.0f), float(-M_PI / 2), vec3(1, 0, 0));  // -Z to -Y
+  sun.light_to_world = glm::rotate(glm::mat4(1.0f), float(-kTheta), vec3(0, 0, 1)) * down;
+  sun.direction = glm::normalize(-vec3(sun.light_to_world[2]));
+  sun.motion = {glm::rotate(glm::mat4(1.0f), float(kTheta), vec3(0, 0, 1)) * down};
+  const FrameImage lit = render(floor_scene(sun), cam, s);
+  double mean = 0.0;
+  for (int i = 0; i < kFloorPx * kFloorPx; ++i) mean += lit.rgb[3 * i] / (kFloorPx * kFloorPx);
+  EXPECT_NEAR(mean, kRho / M_PI * std::sin(kTheta) / kTheta, 2e-4) << "tilting directional light";
+}
+
 // ---- Bits ----------------------------------------------------------------------------------
 // A room with a swelling sphere placed twice (one placement moving and turning), a deforming
 // wall, a moving emitter, a point light, depth of field and a moving camera.

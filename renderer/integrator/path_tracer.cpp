@@ -80,10 +80,15 @@ struct ShadingContext {
 // Direct light from every punctual light (delta lights: no MIS partner).
 vec3 punctual_light_contribution(const RenderScene& scene, const ShadingContext& c, PathCounters& counters) {
   vec3 sum(0.0f);
-  for (const PunctualLight& light : scene.description.lights) {
+  const std::vector<PunctualLight>& lights = scene.description.lights;
+  for (std::size_t i = 0; i < lights.size(); ++i) {
+    const PunctualLight& light = lights[i];
+    const MotionTransform& motion = scene.light_motion[i];
+    const LightPlacement at = motion.empty() ? LightPlacement{light.position, light.direction}
+                                             : light_placement(motion.at(c.time));
     LightSample ls;
     vec3 wi_local;
-    if (!sample_punctual_light(light, c.s.p, ls) || !c.usable(ls.wi, wi_local)) continue;
+    if (!sample_punctual_light(light, at, c.s.p, ls) || !c.usable(ls.wi, wi_local)) continue;
     const vec3 f = c.bsdf.eval(c.wo_local, wi_local);
     if (f == vec3(0.0f)) continue;
     ++counters.rays;

@@ -184,6 +184,11 @@ struct PunctualLight {
   float inner_cone_angle = 0.0f, outer_cone_angle = 0.7853982f;
   glm::vec3 position{0.0f};
   glm::vec3 direction{0.0f, 0.0f, -1.0f};  // the way the light shines, world space
+  // A light that moves while the shutter is open: its node's world transform at motion step 0
+  // and at steps 1 .. motion_steps - 1 (`motion`); the light is at the transform's origin and
+  // shines along its -Z. Empty motion: it stands still (light_to_world is then unused).
+  glm::mat4 light_to_world{1.0f};
+  std::vector<glm::mat4> motion;
 };
 
 struct SceneDescription {
