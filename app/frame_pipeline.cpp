@@ -181,14 +181,18 @@ ImageWriteParams frame_write_params(const RenderOptions& o, const FramePlan& pla
   meta.tile_size = settings.tile_size;
   meta.max_bounces = settings.max_bounces;
   meta.dropped_samples = stats.dropped_samples;
-  meta.world_to_camera = camera.world_to_camera();
-  meta.world_to_ndc = camera.world_to_ndc();
+  // The camera at the frame's own time, where compositors expect it, also when the shutter
+  // opens before the frame (the frame's fraction of the shutter, 0 without one).
+  const Shutter shutter = parse_shutter(o);
+  const float frame_in_shutter = shutter.on() ? std::clamp(-shutter.open / (shutter.close - shutter.open), 0.0f, 1.0f) : 0.0f;
+  meta.world_to_camera = camera.world_to_camera(frame_in_shutter);
+  meta.world_to_ndc = camera.world_to_ndc(frame_in_shutter);
   meta.scene_path = o.scene_path;
   meta.camera_name = plan.camera.name;
   meta.material_variant = plan.material_variant_name;
   meta.animated = plan.animated;
   meta.scene_time = scene_time(o);
-  if (const Shutter shutter = parse_shutter(o); shutter.on()) {
+  if (shutter.on()) {
     meta.shutter_open = meta.scene_time + shutter.open;
     meta.shutter_close = meta.scene_time + shutter.close;
   }

@@ -34,9 +34,9 @@ Ray RenderCamera::generate_ray(const vec2& film, const vec2& lens, float time) c
   return ray;
 }
 
-glm::mat4 RenderCamera::world_to_camera() const { return glm::inverse(camera_to_world); }
+glm::mat4 RenderCamera::world_to_camera(float time) const { return glm::inverse(camera_to_world_at(time)); }
 
-glm::mat4 RenderCamera::world_to_ndc() const {
+glm::mat4 RenderCamera::world_to_ndc(float time) const {
   const float n = znear > 0.0f ? znear : 1e-3f;
   const float f = zfar > n ? zfar : 1e4f;
   glm::mat4 proj;
@@ -45,7 +45,7 @@ glm::mat4 RenderCamera::world_to_ndc() const {
   else
     proj = glm::orthoRH_NO(-half_height * aspect, half_height * aspect, -half_height,
                            half_height, n, f);
-  return proj * world_to_camera();
+  return proj * world_to_camera(time);
 }
 
 RenderCamera make_camera(const Camera& cam, int width, int height, const CameraParams& params) {

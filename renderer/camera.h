@@ -32,11 +32,12 @@ struct RenderCamera {
   Ray generate_ray(const vec2& film, const vec2& lens, float time = 0.0f) const;
   bool moves() const { return !motion.empty(); }
   glm::mat4 camera_to_world_at(float time) const { return motion.empty() ? camera_to_world : motion.at(time); }
-  // Where the camera looks and stands, and its projections: at the shutter's opening.
+  // Where the camera looks and stands: at the shutter's opening.
   vec3 forward() const { return -glm::vec3(camera_to_world[2]); }
   vec3 position() const { return glm::vec3(camera_to_world[3]); }
-  glm::mat4 world_to_camera() const;
-  glm::mat4 world_to_ndc() const;  // camera space -> [-1,1]^2 screen, z = depth
+  // Its projections at `time`, the fraction of the shutter (0: the opening).
+  glm::mat4 world_to_camera(float time = 0.0f) const;
+  glm::mat4 world_to_ndc(float time = 0.0f) const;  // camera space -> [-1,1]^2 screen, z = depth
 };
 
 // The camera from the scene description (vertical fov, aspect from the image), with its

@@ -6,6 +6,7 @@
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfIntAttribute.h>
+#include <OpenEXR/ImfMatrixAttribute.h>
 
 namespace tessera::test {
 
@@ -26,6 +27,12 @@ std::vector<float> exr_rgb(const std::string& path) {
 int exr_int(const std::string& path, const char* attribute) {
   Imf::InputFile file(path.c_str());
   return file.header().typedAttribute<Imf::IntAttribute>(attribute).value();
+}
+
+std::vector<float> exr_m44f(const std::string& path, const char* attribute) {
+  Imf::InputFile file(path.c_str());
+  const Imath::M44f& m = file.header().typedAttribute<Imf::M44fAttribute>(attribute).value();
+  return std::vector<float>(&m[0][0], &m[0][0] + 16);
 }
 
 float exr_float(const std::string& path, const char* attribute) {

@@ -128,6 +128,29 @@ TEST(FrameSequence, ShutterBlursASkinAndRecordsTheShutter) {
   EXPECT_EQ(test::exr_rgb(dir + "/closed.exr"), test::exr_rgb(dir + "/still.exr"));
 }
 
+// A camera sliding from x = 0 to x = 2 over the first second: at frame 12 (0.5 s) under a
+// shutter from -0.5 to 0.5 frames, the header's camera is where it is at the frame's time,
+// x = 1 (the opening would put it at 23/24), in Imath's row-vector layout (translation last).
+TEST(FrameSequence, TheHeadersCameraIsAtTheFramesTimeInsideTheShutter) {
+  const std::string dir = test::make_temp_dir("frame-sequence-camera");
+  std::ofstream(dir + "/cam.gltf") << R"({"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}],
+    "nodes": [{"camera": 0, "translation": [0, 0, 5]}],
+    "cameras": [{"type": "perspective", "perspective": {"yfov": 0.7, "znear": 0.1}}],
+    "buffers": [{"byteLength": 32, "uri": "data:application/octet-stream;base64,AAAAAAAAgD8AAAAAAAAAAAAAoEAAAABAAAAAAAAAoEA="}],
+    "bufferViews": [{"buffer": 0, "byteLength": 8}, {"buffer": 0, "byteOffset": 8, "byteLength": 24}],
+    "accessors": [{"bufferView": 0, "componentType": 5126, "count": 2, "type": "SCALAR", "min": [0], "max": [1]},
+                  {"bufferView": 1, "componentType": 5126, "count": 2, "type": "VEC3"}],
+    "animations": [{"samplers": [{"input": 0, "output": 1}], "channels": [{"sampler": 0, "target": {"node": 0, "path": "translation"}}]}]})";
+  for (const char* shutter : {"-0.5,0.5", "0,0", "-1,0"}) {
+    const auto r = test::run_command(quote(test::tessera_exe()) + " render " + quote(dir + "/cam.gltf") +
+                                     " --frame 12 --width 16 --spp 1 -q --shutter " + shutter + " -o " + quote(dir + "/c.exr"));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const std::vector<float> m = test::exr_m44f(dir + "/c.exr", "worldToCamera");
+    EXPECT_NEAR(m[12], -1.0f, 1e-5f) << shutter;
+    EXPECT_NEAR(m[14], -5.0f, 1e-5f) << shutter;
+  }
+}
+
 TEST(FrameSequence, BadRangesAndCombinationsAreRefused) {
   const std::string dir = test::make_temp_dir("frame-sequence-bad");
   auto r = render("--frames 5:2 -o " + quote(dir + "/f.#.exr"));
