@@ -32,6 +32,7 @@ struct RenderOptions {
   std::string frames;  // --frames FIRST:LAST[:STEP]; empty: one frame
   bool skip_existing = false;
   std::string shutter;  // --shutter OPEN,CLOSE in frames; empty: no motion blur
+  std::string crop;  // --crop X0,X1,Y0,Y1 (fractions of the frame); empty: the whole frame
   int motion_steps = 3;
   float aperture = 0.0f, focus_distance = 0.0f, fov = 0.0f;
   std::string background = "auto";

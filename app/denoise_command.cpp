@@ -41,12 +41,14 @@ int run_denoise(const DenoiseOptions& o) {
     throw UsageError(fmt::format("{}: cannot be denoised: missing channel{} {} (render it with --denoise, or with "
                                  "--aov halves,albedo,normal)",
                                  o.input, missing.size() > 1 ? "s" : "", fmt::join(missing, ", ")));
+  const FrameWindow window = exr.window;
   FrameImage frame = frame_from_exr(std::move(exr));
   DenoiseParams params;
   params.threads = o.threads;
   const double seconds = denoise_frame(frame, params);
   ImageWriteParams write;
   write.header_from = o.input;
+  write.window = window;
   write_image(o.output, frame, write);
   if (!o.preview.empty()) write_image(o.preview, frame, {});
   if (!o.quiet)

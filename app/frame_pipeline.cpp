@@ -14,6 +14,7 @@
 #include "app/profile_outputs.h"
 #include "app/render_setup.h"
 #include "renderer/adaptive_sampling.h"
+#include "renderer/tile_scheduler.h"
 
 namespace tessera {
 
@@ -35,6 +36,21 @@ vec3 parse_background(const std::string& text, bool scene_has_lights) {
   return c;
 }
 
+// pbrt's rule: the crop [x0, x1) x [y0, y1) in fractions covers the pixels from ceil(x0 W)
+// up to ceil(x1 W), so adjacent crops tile the frame without overlap.
+Tile crop_region(const std::string& text, int width, int height) {
+  double x0, x1, y0, y1;
+  char tail;
+  if (std::sscanf(text.c_str(), "%lf,%lf,%lf,%lf%c", &x0, &x1, &y0, &y1, &tail) != 4 || !(0.0 <= x0 && x0 < x1 && x1 <= 1.0) ||
+      !(0.0 <= y0 && y0 < y1 && y1 <= 1.0))
+    throw UsageError("--crop " + text + ": expected X0,X1,Y0,Y1 with 0 <= X0 < X1 <= 1 and 0 <= Y0 < Y1 <= 1");
+  auto at = [](double f, int size) { return static_cast<int>(std::ceil(f * size)); };
+  const Tile region{at(x0, width), at(y0, height), at(x1, width), at(y1, height)};
+  if (region.x1 <= region.x0 || region.y1 <= region.y0)
+    throw UsageError(fmt::format("--crop {}: holds no pixel of the {}x{} frame", text, width, height));
+  return region;
+}
+
 // Width, height and the camera: the chosen camera decides the aspect ratio before the size
 // is known.
 void plan_image(const RenderOptions& o, const SceneDescription& scene, const Bounds3* framing, FramePlan& plan) {
@@ -52,6 +68,12 @@ void plan_image(const RenderOptions& o, const SceneDescription& scene, const Bou
     throw UsageError(fmt::format("--width {} --height {}: more than 268 million pixels", s.width, s.height));
   plan.camera = choose_camera(scene, o.camera, s.width, s.height, framing);
   plan.camera_params = {o.fov, o.aperture, o.focus_distance};
+  if (!o.crop.empty()) {
+    const Tile region = crop_region(o.crop, s.width, s.height);
+    s.window = {region.x0, region.y0, s.width, s.height};
+    s.width = region.x1 - region.x0;
+    s.height = region.y1 - region.y0;
+  }
 }
 
 void plan_sampling(const RenderOptions& o, RenderSettings& s) {
@@ -160,7 +182,9 @@ BuiltFrame build_frame(LoadedScene loaded, const FramePlan& plan, SceneCache* ca
   }
   built.seconds = seconds_since(start);
   const RenderSettings& s = plan.settings;
-  built.camera = make_camera(plan.camera, s.width, s.height, plan.camera_params);
+  const bool cropped = s.window.cropped();  // the camera sees the whole frame
+  built.camera = make_camera(plan.camera, cropped ? s.window.full_width : s.width,
+                             cropped ? s.window.full_height : s.height, plan.camera_params);
   if (plan.camera_params.aperture > 0.0f && plan.camera_params.focus_distance <= 0.0f)
     built.camera.focus_distance = autofocus_distance(*built.scene, built.camera);
   return built;
@@ -171,6 +195,7 @@ ImageWriteParams frame_write_params(const RenderOptions& o, const FramePlan& pla
   const RenderSettings& settings = plan.settings;
   ImageWriteParams write;
   write.half = o.half;
+  write.window = settings.window;
   write.exposure = o.exposure;
   FrameMetadata& meta = write.metadata;
   meta.render_seconds = stats.seconds;

@@ -91,6 +91,10 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
                   "Motion blur: times across the shutter at which moving objects, deforming meshes and the camera "
                   "are described (Embree interpolates between them)")
       ->check(CLI::Range(2, 129))->capture_default_str();
+  cmd->add_option("--crop", o.crop,
+                  "Render only this region of the frame, X0,X1,Y0,Y1 as fractions of its width and height "
+                  "(as pbrt's --cropwindow; 0,0.5,0,1 is the left half): pixels ceil(X0 W) to ceil(X1 W) - 1, "
+                  "the same values as in the whole frame; the EXR keeps the frame as its display window");
   cmd->add_option("--aperture", o.aperture, "Thin-lens aperture diameter in scene units (0: pinhole)")
       ->check(CLI::Range(0.0f, 1e6f))->capture_default_str();
   cmd->add_option("--focus-distance", o.focus_distance,

@@ -87,7 +87,7 @@ FrameJobResult render_frame_job(const RenderOptions& o, const FrameJob& job) {
   if (!o.resume.empty()) {
     check_resume_settings(o.resume, resumed_settings, resume_text);
     const int min_spp = settings.adaptive.on() ? adaptive_min_spp(settings.adaptive, settings.spp) : 0;
-    resumed = read_resume_film(o.resume, {settings.width, settings.height, settings.aovs, settings.spp, min_spp});
+    resumed = read_resume_film(o.resume, {settings.width, settings.height, settings.aovs, settings.spp, min_spp, settings.window});
   }
   if (o.checkpoint > 0.0) {
     settings.checkpoint_interval = o.checkpoint;

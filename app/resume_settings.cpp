@@ -98,6 +98,8 @@ std::string resume_settings(const RenderOptions& o, const RenderSettings& s, con
   // compares both ways, so neither side can drop these lines unnoticed.
   if (s.adaptive.on())
     text += fmt::format("noise-threshold={}\nmin-spp={}\n", s.adaptive.threshold, adaptive_min_spp(s.adaptive, s.spp));
+  if (s.window.cropped())  // the region of which frame
+    text += fmt::format("crop={},{},{}x{}\n", s.window.x, s.window.y, s.window.full_width, s.window.full_height);
   return text;
 }
 
@@ -106,7 +108,7 @@ namespace {
 // A line is left out when its setting is what frames had before the line existed.
 const std::pair<const char*, const char*> kUnwrittenDefaults[] = {
     {"pixel-filter", "box 1"}, {"light-sampling", "mis"}, {"clamp", "0"}, {"animation", "all"}, {"time", "0"},
-    {"shutter", "none"}, {"motion-steps", "1"}};
+    {"shutter", "none"}, {"motion-steps", "1"}, {"crop", "none"}};
 
 std::string value_of(const std::vector<std::pair<std::string, std::string>>& lines, const std::string& key) {
   for (const auto& [k, v] : lines)

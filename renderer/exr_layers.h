@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include <ImathBox.h>
+
 #include "renderer/film.h"
 
 namespace tessera {
@@ -35,5 +37,15 @@ inline const std::vector<ExrLayer>& exr_layers() {
 
 // Each pixel's sample count (FrameImage::pixel_samples), as FLOAT: exact up to 2^24.
 inline const char* const kSamplesChannel = "spp";
+
+// The pixels an image of width x height covers in its frame (the EXR data window), and the
+// frame (the display window): the same unless the image was cropped.
+inline Imath::Box2i exr_data_window(const FrameWindow& w, int width, int height) {
+  return {Imath::V2i(w.x, w.y), Imath::V2i(w.x + width - 1, w.y + height - 1)};
+}
+inline Imath::Box2i exr_display_window(const FrameWindow& w, int width, int height) {
+  return w.cropped() ? Imath::Box2i(Imath::V2i(0, 0), Imath::V2i(w.full_width - 1, w.full_height - 1))
+                     : exr_data_window(w, width, height);
+}
 
 }  // namespace tessera

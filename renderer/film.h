@@ -19,6 +19,13 @@ struct AovSelection {
 };
 
 // A finished frame: linear RGB and the requested outputs, row-major, top row first.
+// Where an image lies in the frame it was cut from (--crop): its top-left pixel at (x, y) of
+// a full_width x full_height frame. A zero full size: the image is the whole frame.
+struct FrameWindow {
+  int x = 0, y = 0, full_width = 0, full_height = 0;
+  bool cropped() const { return full_width > 0; }
+};
+
 struct FrameImage {
   int width = 0, height = 0;
   int samples_per_pixel = 0;  // the fewest any pixel got

@@ -32,6 +32,9 @@ ExrChannels read_exr_channels(const std::string& path) {
     ExrChannels out;
     out.width = window.max.x - window.min.x + 1;
     out.height = window.max.y - window.min.y + 1;
+    const Imath::Box2i display = file.header().displayWindow();
+    if (display != window && display.min == Imath::V2i(0, 0))
+      out.window = {window.min.x, window.min.y, display.max.x + 1, display.max.y + 1};
     const std::size_t n = static_cast<std::size_t>(out.width) * out.height;
     Imf::FrameBuffer fb;
     for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it) {

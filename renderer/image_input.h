@@ -19,6 +19,7 @@ class ImageInputError : public std::runtime_error {
 
 struct ExrChannels {
   int width = 0, height = 0;
+  FrameWindow window;  // where the pixels lie in the file's display window (a crop)
   std::map<std::string, std::vector<float>> channels;  // by name, one float per pixel, row-major
 
   bool has(const std::string& name) const { return channels.count(name) != 0; }

@@ -103,7 +103,8 @@ void write_exr(const std::string& path, const FrameImage& img, const ImageWriteP
   enable_exr_threads();
   std::vector<ChannelData> channels = exr_channels(img);
   const FrameMetadata& m = params.metadata;
-  Imf::Header header(img.width, img.height);
+  const Imath::Box2i data_window = exr_data_window(params.window, img.width, img.height);
+  Imf::Header header(exr_display_window(params.window, img.width, img.height), data_window);
   header.compression() = Imf::ZIP_COMPRESSION;
   header.insert("samplesPerPixel", Imf::IntAttribute(img.samples_per_pixel));
   header.insert("renderTimeSeconds", Imf::DoubleAttribute(m.render_seconds));
@@ -154,12 +155,12 @@ void write_exr(const std::string& path, const FrameImage& img, const ImageWriteP
       base = reinterpret_cast<char*>(ch.f.data());
       size = sizeof(float);
     }
-    fb.insert(ch.name, Imf::Slice(type, base, size, size * img.width));
+    fb.insert(ch.name, Imf::Slice::Make(type, base, data_window, size, size * img.width));
   }
   std::optional<ResumeLayers> resume;
   if (params.resume_film) {
     resume.emplace(*params.resume_film, params.resume_settings);
-    resume->insert_into(header, fb);
+    resume->insert_into(header, fb, data_window);
   }
   Imf::OutputFile file(path.c_str(), header);
   file.setFrameBuffer(fb);

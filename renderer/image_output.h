@@ -52,6 +52,7 @@ struct FrameMetadata {
 
 struct ImageWriteParams {
   bool half = false;  // EXR: 16-bit half floats instead of 32-bit floats
+  FrameWindow window;  // EXR: where the image lies in its frame (data and display windows)
   float exposure = 0.0f;  // display formats: stops applied before sRGB encoding
   FrameMetadata metadata;  // EXR header
   // EXR: also store the film losslessly with these settings lines, so that --resume can

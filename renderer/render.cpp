@@ -55,18 +55,21 @@ void render_tile(const RenderScene& scene, const RenderCamera& camera, const Pix
   // Motion blur: each camera sample draws its time, after the film and lens positions. A
   // scene where nothing moves draws none, so its numbers and image stay what they were.
   const bool camera_moves = camera.moves(), timed = scene.moves() || camera_moves;
-  const float inv_w = 1.0f / settings.width, inv_h = 1.0f / settings.height;
+  const FrameWindow& window = settings.window;
+  const float inv_w = 1.0f / (window.cropped() ? window.full_width : settings.width);
+  const float inv_h = 1.0f / (window.cropped() ? window.full_height : settings.height);
   for (int y = tile.y0; y < tile.y1; ++y) {
     for (int x = tile.x0; x < tile.x1; ++x) {
       const int begin = static_cast<int>(first_sample(film, x, y, wave));
       if (begin >= wave.end) continue;
+      const int fx = x + window.x, fy = y + window.y;  // in the frame: what the samples depend on
       PixelSums sums;
       for (int s = begin; s < wave.end; ++s) {
-        Sampler rng(settings.sampler, x, y, s, settings.seed);
+        Sampler rng(settings.sampler, fx, fy, s, settings.seed);
         const vec2 at = filter.sample(rng.next2());
         const vec2 lens = rng.next2();
         const float time = timed ? rng.next() : 0.0f;
-        const Ray ray = camera.generate_ray({(x + at.x) * inv_w, (y + at.y) * inv_h}, lens, time);
+        const Ray ray = camera.generate_ray({(fx + at.x) * inv_w, (fy + at.y) * inv_h}, lens, time);
         if (!is_finite(ray.origin) || !is_finite(ray.direction)) {  // a degenerate camera: Embree
           ++counters.path.dropped;                                 // would abort on such a ray
           ++sums.samples;

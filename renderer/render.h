@@ -20,7 +20,10 @@ namespace tessera {
 struct RenderStats;
 
 struct RenderSettings {
-  int width = 640, height = 360;
+  int width = 640, height = 360;  // the film: the frame, or its cropped region
+  // With a crop, the film is a region of a larger frame: each of its pixels gets exactly
+  // the samples (and the camera rays) that pixel gets when the whole frame is rendered.
+  FrameWindow window;
   int spp = 16;
   int max_bounces = 8;
   int threads = 0;  // 0 = all cores

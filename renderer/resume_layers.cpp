@@ -1,5 +1,7 @@
 #include "renderer/resume_layers.h"
 
+#include "renderer/exr_layers.h"
+
 #include <cstdio>
 #include <cstring>
 #include <deque>
@@ -112,17 +114,16 @@ void add_float_sums(ResumeLayers::Buffers& b, const std::vector<vec3>& sums, con
 
 ResumeLayers::~ResumeLayers() = default;
 
-void ResumeLayers::insert_into(Imf::Header& header, Imf::FrameBuffer& fb) {
+void ResumeLayers::insert_into(Imf::Header& header, Imf::FrameBuffer& fb, const Imath::Box2i& data_window) {
   const Buffers& b = *buffers_;
   for (const auto& [name, data] : b.uints) {
     header.channels().insert(name, Imf::Channel(Imf::UINT));
-    fb.insert(name, Imf::Slice(Imf::UINT, reinterpret_cast<char*>(const_cast<std::uint32_t*>(data.data())),
-                               sizeof(std::uint32_t), sizeof(std::uint32_t) * b.width));
+    fb.insert(name, Imf::Slice::Make(Imf::UINT, data.data(), data_window, sizeof(std::uint32_t),
+                                     sizeof(std::uint32_t) * b.width));
   }
   for (const auto& [name, data] : b.floats) {
     header.channels().insert(name, Imf::Channel(Imf::FLOAT));
-    fb.insert(name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(const_cast<float*>(data.data())), sizeof(float),
-                               sizeof(float) * b.width));
+    fb.insert(name, Imf::Slice::Make(Imf::FLOAT, data.data(), data_window, sizeof(float), sizeof(float) * b.width));
   }
   header.insert("tesseraResume", Imf::StringAttribute(settings_));
   header.insert("tesseraFingerprint", Imf::StringAttribute(fnv1a_hex(settings_)));
@@ -146,17 +147,17 @@ namespace {
 // the doubles and the vec3 sums are read into planes and put together afterwards.
 class LayerReader {
  public:
-  LayerReader(const Imf::ChannelList& channels, const FilmState& film, const std::string& path)
-      : channels_(channels), width_(film.width), n_(film.pixel_count()), path_(path) {}
+  LayerReader(const Imf::Header& header, const FilmState& film, const std::string& path)
+      : channels_(header.channels()), window_(header.dataWindow()), width_(film.width), n_(film.pixel_count()),
+        path_(path) {}
 
   void uints(const std::string& name, std::uint32_t* data) {
     check(name, Imf::UINT, "UINT");
-    fb_.insert(name, Imf::Slice(Imf::UINT, reinterpret_cast<char*>(data), sizeof(std::uint32_t),
-                                sizeof(std::uint32_t) * width_));
+    fb_.insert(name, Imf::Slice::Make(Imf::UINT, data, window_, sizeof(std::uint32_t), sizeof(std::uint32_t) * width_));
   }
   void floats(const std::string& name, float* data) {
     check(name, Imf::FLOAT, "FLOAT");
-    fb_.insert(name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(data), sizeof(float), sizeof(float) * width_));
+    fb_.insert(name, Imf::Slice::Make(Imf::FLOAT, data, window_, sizeof(float), sizeof(float) * width_));
   }
   void doubles(const std::string& prefix, std::vector<glm::dvec3>* out) {
     for (int c = 0; c < 3; ++c)
@@ -168,9 +169,9 @@ class LayerReader {
     vec3s_.push_back(out);
   }
   // Reads the pixels and assembles the doubles and vec3 sums in the order they were asked for.
-  void read(Imf::InputFile& file, int height) {
+  void read(Imf::InputFile& file) {
     file.setFrameBuffer(fb_);
-    file.readPixels(0, height - 1);
+    file.readPixels(window_.min.y, window_.max.y);
     for (std::size_t k = 0; k < doubles_.size(); ++k)
       for (std::size_t i = 0; i < n_; ++i)
         for (int c = 0; c < 3; ++c) {
@@ -193,6 +194,7 @@ class LayerReader {
   float* plane_f() { return f_planes_.emplace_back(n_).data(); }
 
   const Imf::ChannelList& channels_;
+  Imath::Box2i window_;
   int width_;
   std::size_t n_;
   std::string path_;
@@ -204,7 +206,7 @@ class LayerReader {
 };
 
 void read_layers(Imf::InputFile& file, FilmState& film, const std::string& path) {
-  LayerReader r(file.header().channels(), film, path);
+  LayerReader r(file.header(), film, path);
   r.uints("tessera.samples", film.samples.data());
   r.doubles("tessera.sum.", &film.radiance);
   if (film.aovs.albedo) r.vec3s(kRgb, "tessera.albedo.", &film.albedo);
@@ -220,7 +222,7 @@ void read_layers(Imf::InputFile& file, FilmState& film, const std::string& path)
   }
   std::vector<std::uint32_t> converged(film.adaptive() ? film.pixel_count() : 0);
   if (film.adaptive()) r.uints("tessera.converged", converged.data());
-  r.read(file, film.height);
+  r.read(file);
   for (std::size_t i = 0; i < converged.size(); ++i) {
     if (converged[i] > 1) throw ResumeError(path + ": tessera.converged holds " + std::to_string(converged[i]) + ": the file is damaged");
     film.converged[i] = static_cast<std::uint8_t>(converged[i]);
@@ -274,9 +276,10 @@ FilmState read_resume_film(const std::string& path, const ResumeFilmSpec& spec) 
     Imf::InputFile file(path.c_str());
     const Imf::Header& h = file.header();
     const Imath::Box2i dw = h.dataWindow();
-    if (dw.min.x != 0 || dw.min.y != 0 || dw.max.x + 1 != spec.width || dw.max.y + 1 != spec.height)
-      throw ResumeError(path + ": its pixels are not a " + std::to_string(spec.width) + "x" +
-                        std::to_string(spec.height) + " image");
+    if (dw != exr_data_window(spec.window, spec.width, spec.height))
+      throw ResumeError(path + ": its pixels are not the " + std::to_string(spec.width) + "x" +
+                        std::to_string(spec.height) + " image at (" + std::to_string(spec.window.x) + ", " +
+                        std::to_string(spec.window.y) + ") this render makes");
     FilmState film = FilmState::empty(spec.width, spec.height, spec.aovs, spec.adaptive_min_spp > 0);
     read_layers(file, film, path);
     check_counts(film, spec, path);

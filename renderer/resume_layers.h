@@ -23,6 +23,7 @@
 
 #include "renderer/film.h"
 
+#include <ImathBox.h>
 #include <OpenEXR/ImfForward.h>
 
 namespace tessera {
@@ -39,7 +40,7 @@ class ResumeLayers {
  public:
   ResumeLayers(const FilmState& film, std::string settings);
   ~ResumeLayers();
-  void insert_into(Imf::Header& header, Imf::FrameBuffer& frame_buffer);
+  void insert_into(Imf::Header& header, Imf::FrameBuffer& frame_buffer, const Imath::Box2i& data_window);
   struct Buffers;  // the converted channels, defined in the .cpp
 
  private:
@@ -61,6 +62,7 @@ struct ResumeFilmSpec {
   AovSelection aovs;
   int spp = 0;
   int adaptive_min_spp = 0;  // 0: not an adaptive render
+  FrameWindow window{};  // where the film lies in its frame (--crop)
 };
 
 // The film `path` carries, which must match `spec`, every pixel's count the end of one of

@@ -13,20 +13,25 @@ namespace tessera::test {
 std::vector<float> exr_rgb(const std::string& path) {
   Imf::InputFile file(path.c_str());
   const Imath::Box2i dw = file.header().dataWindow();
-  const int w = dw.max.x + 1, h = dw.max.y + 1;
+  const int w = dw.max.x - dw.min.x + 1, h = dw.max.y - dw.min.y + 1;
   std::vector<float> px(static_cast<std::size_t>(3) * w * h);
   Imf::FrameBuffer fb;
   for (int c = 0; c < 3; ++c)
-    fb.insert(std::string(1, "RGB"[c]), Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(px.data() + c),
-                                                   3 * sizeof(float), 3 * sizeof(float) * w));
+    fb.insert(std::string(1, "RGB"[c]), Imf::Slice::Make(Imf::FLOAT, px.data() + c, dw, 3 * sizeof(float), 3 * sizeof(float) * w));
   file.setFrameBuffer(fb);
-  file.readPixels(0, h - 1);
+  file.readPixels(dw.min.y, dw.max.y);
   return px;
 }
 
 int exr_int(const std::string& path, const char* attribute) {
   Imf::InputFile file(path.c_str());
   return file.header().typedAttribute<Imf::IntAttribute>(attribute).value();
+}
+
+ExrWindows exr_windows(const std::string& path) {
+  Imf::InputFile file(path.c_str());
+  const Imath::Box2i d = file.header().dataWindow(), s = file.header().displayWindow();
+  return {{d.min.x, d.min.y, d.max.x, d.max.y}, {s.min.x, s.min.y, s.max.x, s.max.y}};
 }
 
 std::vector<float> exr_m44f(const std::string& path, const char* attribute) {

@@ -1,11 +1,13 @@
 #!/usr/bin/env python3
-# Adds an animation 'bounce' to a .glb: node NODE rises 0.5 and comes back over 2 seconds
-# (keys at 0, 1, 2 s). For measuring frame sequences on a large still scene with one moving
-# part (docs/performance.md). Usage: tools/add-animation.py IN.glb OUT.glb NODE
+# Adds an animation 'bounce' to a .glb: node NODE rises by RISE (in its parent's units) and
+# comes back over 2 seconds (keys at 0, 1, 2 s). For measuring frame sequences on a large
+# still scene with one moving part (docs/performance.md). Keep RISE small against the scene:
+# without a camera in the file, the automatic camera frames everything the animation reaches.
+# Usage: tools/add-animation.py IN.glb OUT.glb NODE RISE
 import json, struct, sys
-if len(sys.argv) != 4:
-    sys.exit("usage: add-animation.py IN.glb OUT.glb NODE")
-src, dst, node = sys.argv[1], sys.argv[2], int(sys.argv[3])
+if len(sys.argv) != 5:
+    sys.exit("usage: add-animation.py IN.glb OUT.glb NODE RISE")
+src, dst, node, rise = sys.argv[1], sys.argv[2], int(sys.argv[3]), float(sys.argv[4])
 b = open(src, 'rb').read()
 jl = struct.unpack('<I', b[12:16])[0]
 j = json.loads(b[20:20 + jl])
@@ -16,7 +18,7 @@ while len(bin_) % 4: bin_.append(0)
 off = len(bin_)
 times = [0.0, 1.0, 2.0]
 t0 = j['nodes'][node].get('translation', [0, 0, 0])
-vals = [t0, [t0[0], t0[1] + 0.5, t0[2]], t0]
+vals = [t0, [t0[0], t0[1] + rise, t0[2]], t0]
 bin_ += struct.pack('<3f', *times) + struct.pack('<9f', *[x for v in vals for x in v])
 j['buffers'][0]['byteLength'] = len(bin_)
 bv = len(j['bufferViews'])
