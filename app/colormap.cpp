@@ -1,29 +1,35 @@
 #include "app/colormap.h"
 
 #include <algorithm>
-#include <cmath>
+
+#include <OpenImageIO/imagebufalgo.h>
 
 namespace tessera {
 
-Rgb8 viridis(double t) {
-  // A degree-6 polynomial fit of the matplotlib table per channel (within about 0.02 of
-  // it), so no 256-entry table has to be carried.
-  static constexpr double c[7][3] = {
-      {0.2777273272234177, 0.005407344544966578, 0.3340998053353061},
-      {0.1050930431085774, 1.404613529898575, 1.384590162594685},
-      {-0.3308618287255563, 0.214847559468213, 0.09509516302823659},
-      {-4.634230498983486, -5.799100973351585, -19.33244095627987},
-      {6.228269936347081, 14.17993336680509, 56.69055260068105},
-      {4.776384997670288, -13.74514537774601, -65.35303263337234},
-      {-5.435455855934631, 4.645852612178535, 26.3124352495832}};
-  t = std::clamp(t, 0.0, 1.0);
-  Rgb8 out;
-  for (int ch = 0; ch < 3; ++ch) {
-    double v = c[6][ch];
-    for (int k = 5; k >= 0; --k) v = v * t + c[k][ch];
-    out[ch] = static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0, 1.0) * 255.0));
+std::vector<Colour> viridis(const std::vector<double>& t) {
+  if (t.empty()) return {};
+  const int n = static_cast<int>(t.size());
+  OIIO::ImageBuf values(OIIO::ImageSpec(n, 1, 1, OIIO::TypeDesc::FLOAT));
+  for (int i = 0; i < n; ++i) {
+    const float v = static_cast<float>(std::clamp(t[i], 0.0, 1.0));
+    values.setpixel(i, 0, &v, 1);
+  }
+  // OpenImageIO's maps are linear light, like its images; the chart wants sRGB.
+  const OIIO::ImageBuf linear = OIIO::ImageBufAlgo::color_map(values, 0, "viridis");
+  const OIIO::ImageBuf srgb = OIIO::ImageBufAlgo::colorconvert(linear, "linear", "sRGB");
+  std::vector<Colour> out(n);
+  for (int i = 0; i < n; ++i) {
+    float c[3];
+    srgb.getpixel(i, 0, c, 3);
+    out[i] = {c[0], c[1], c[2]};
   }
   return out;
+}
+
+std::vector<Colour> viridis_ramp(int n) {
+  std::vector<double> t(n);
+  for (int i = 0; i < n; ++i) t[i] = n > 1 ? double(i) / (n - 1) : 0.0;
+  return viridis(t);
 }
 
 }  // namespace tessera

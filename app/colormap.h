@@ -1,12 +1,18 @@
-// Viridis (van der Walt and Smith, matplotlib): perceptually uniform, readable in grey and
-// by most colour-blind readers, dark for cheap and bright for expensive.
+// Viridis (van der Walt and Smith, matplotlib) from OpenImageIO's ImageBufAlgo::color_map:
+// perceptually uniform, readable in grey and by most colour-blind readers, dark for cheap
+// and bright for expensive.
 #pragma once
 
-#include "app/canvas.h"
+#include <vector>
+
+#include "app/chart.h"
 
 namespace tessera {
 
-// t in [0, 1] (clamped) to 8-bit sRGB.
-Rgb8 viridis(double t);
+// Each t in [0, 1] (clamped) to its sRGB colour.
+std::vector<Colour> viridis(const std::vector<double>& t);
+
+// n colours evenly spaced from t = 0 to t = 1: the stops of a colour bar.
+std::vector<Colour> viridis_ramp(int n);
 
 }  // namespace tessera

@@ -6,111 +6,133 @@
 #include <fmt/format.h>
 
 #include "app/colormap.h"
-#include "renderer/image_output.h"
 
 namespace tessera {
 
 namespace {
 
-constexpr Rgb8 kPaper{255, 255, 255}, kInk{20, 20, 20}, kGrid{40, 40, 40};
-constexpr int kMargin = 16, kFont = 2, kBarWidth = 22;
+const Colour kInk = hex_colour(0x141414), kGrey = hex_colour(0x555555), kGrid = hex_colour(0x282828);
+const Font kTitle{15.0, true}, kLabel{12.0}, kSmall{11.0};
+constexpr double kMargin = 16, kBarWidth = 18, kTick = 5;
 
-// A step of 1, 2 or 5 x 10^k giving about four intervals up to `max`.
-double nice_step(double max) {
-  const double raw = max / 4.0, p = std::pow(10.0, std::floor(std::log10(raw)));
-  for (double m : {1.0, 2.0, 5.0})
-    if (m * p >= raw) return m * p;
-  return 10.0 * p;
-}
-
-struct Unit {
-  double scale;  // seconds to the unit
-  const char* name;
-};
-Unit unit_for(double max_seconds) { return max_seconds >= 1.0 ? Unit{1.0, "s"} : Unit{1e3, "ms"}; }
-
-std::string number(double v) { return v == std::floor(v) ? fmt::format("{:.0f}", v) : fmt::format("{:g}", v); }
-
-struct Layout {
-  double zoom;  // map pixels per image pixel
-  int map_x, map_y, map_w, map_h;
-  int bar_x;
-};
-
-Layout layout(const WorkPlanParams& p) {
-  // Small frames are enlarged and huge ones reduced, so labels and tiles stay legible.
-  const double longest = std::max(p.width, p.height);
-  const double zoom = std::clamp(640.0 / longest, 1.0 / 3.0, 8.0);
-  Layout l;
-  l.zoom = zoom;
-  l.map_x = kMargin;
-  l.map_y = kMargin + 2 * (kFontHeight * kFont + 6);
-  l.map_w = std::max(1, static_cast<int>(std::lround(p.width * zoom)));
-  l.map_h = std::max(1, static_cast<int>(std::lround(p.height * zoom)));
-  l.bar_x = l.map_x + l.map_w + 20;
-  return l;
-}
-
-void draw_tiles(Canvas& c, const FrameProfile& profile, const Layout& l, double max_seconds) {
-  const std::vector<double> seconds = tile_seconds(profile, TileClock::cpu);
-  auto sx = [&](int x) { return l.map_x + static_cast<int>(std::lround(x * l.zoom)); };
-  auto sy = [&](int y) { return l.map_y + static_cast<int>(std::lround(y * l.zoom)); };
-  const bool outline = profile.plan.params.tile_size * l.zoom >= 8.0;
-  for (std::size_t t = 0; t < seconds.size(); ++t) {
-    const Tile& r = profile.plan.tiles[t];
-    c.fill_rect(sx(r.x0), sy(r.y0), sx(r.x1), sy(r.y1), viridis(max_seconds > 0 ? seconds[t] / max_seconds : 0.0));
-    if (!outline) continue;
-    c.fill_rect(sx(r.x0), sy(r.y0), sx(r.x1), sy(r.y0) + 1, kGrid);
-    c.fill_rect(sx(r.x0), sy(r.y0), sx(r.x0) + 1, sy(r.y1), kGrid);
-  }
-}
-
-void draw_colour_bar(Canvas& c, const Layout& l, double max_seconds) {
-  const int top = l.map_y, bottom = l.map_y + std::max(l.map_h, 120);
-  for (int y = top; y < bottom; ++y)
-    c.fill_rect(l.bar_x, y, l.bar_x + kBarWidth, y + 1, viridis(double(bottom - 1 - y) / (bottom - 1 - top)));
-  if (max_seconds <= 0.0) return;
-  const Unit u = unit_for(max_seconds);
-  const double max = max_seconds * u.scale, step = nice_step(max);
-  for (double v = 0.0; v <= max * (1 + 1e-9); v += step) {
-    const int y = bottom - 1 - static_cast<int>(std::lround(v / max * (bottom - 1 - top)));
-    c.fill_rect(l.bar_x + kBarWidth, y, l.bar_x + kBarWidth + 6, y + 1, kInk);
-    c.text(l.bar_x + kBarWidth + 10, y - kFontHeight * kFont / 2, number(v), kFont, kInk);
-  }
-  c.text(l.bar_x, top - kFontHeight * kFont - 6, std::string("CPU ") + u.name, kFont, kInk);
-}
-
-std::string summary_line(const FrameProfile& p) {
-  const std::vector<double> s = tile_seconds(p, TileClock::cpu);
+std::string summary_line(const FrameProfile& p, const std::vector<double>& s) {
   double total = 0.0;
   for (double v : s) total += v;
   const double max = s.empty() ? 0.0 : *std::max_element(s.begin(), s.end());
   return fmt::format("tile CPU time: max {:.3g} s, mean {:.3g} s; efficiency {:.1f}%, imbalance {:.2f}", max,
-                     total / std::max<std::size_t>(1, s.size()), 100.0 * p.balance.efficiency, p.balance.imbalance);
+                     total / std::max<std::size_t>(1, s.size()), 100.0 * p.balance.efficiency,
+                     p.balance.imbalance);
+}
+
+std::string number(double v) { return fmt::format("{:g}", v); }
+
+// Where everything goes, in chart pixels.
+struct Layout {
+  double zoom;  // chart pixels per frame pixel
+  double map_x, map_y, map_w, map_h;
+  double bar_x, bar_h;
+  double bottom;  // below the x axis' title
+  int width, height;
+};
+
+Layout layout(const HeatmapPlot& p) {
+  Layout l;
+  // Small frames are enlarged and huge ones reduced, so labels and tiles stay legible.
+  l.zoom = std::clamp(640.0 / std::max(p.width, p.height), 1.0 / 3.0, 8.0);
+  l.map_w = std::max(1.0, std::round(p.width * l.zoom));
+  l.map_h = std::max(1.0, std::round(p.height * l.zoom));
+  l.map_x = kMargin + kLabel.size + 8 + text_width(std::to_string(p.height), kSmall) + kTick + 4;
+  l.map_y = kMargin + kTitle.size + 14;
+  l.bar_x = l.map_x + l.map_w + 24;
+  l.bar_h = std::max(l.map_h, 160.0);
+  double labels = 0.0;
+  for (double v : p.bar_ticks) labels = std::max(labels, text_width(number(v), kLabel));
+  const double legend_right = l.bar_x + kBarWidth + kTick + 4 + labels + 8 + kLabel.size + kMargin;
+  l.bottom = l.map_y + std::max(l.map_h + kTick + 2 * kSmall.size + 12, l.bar_h);
+  l.width = static_cast<int>(std::ceil(std::max({legend_right, 2 * kMargin + text_width(p.summary, kLabel),
+                                                 2 * kMargin + text_width(p.title, kTitle)})));
+  l.height = static_cast<int>(std::ceil(l.bottom + 14 + kLabel.size + kMargin));
+  return l;
+}
+
+void draw_tiles(Chart& c, const HeatmapPlot& p, const Layout& l) {
+  auto sx = [&](int x) { return l.map_x + std::round(x * l.zoom); };
+  auto sy = [&](int y) { return l.map_y + std::round(y * l.zoom); };
+  for (const HeatmapCell& cell : p.cells)
+    c.rect(sx(cell.rect.x0), sy(cell.rect.y0), sx(cell.rect.x1) - sx(cell.rect.x0),
+           sy(cell.rect.y1) - sy(cell.rect.y0), cell.colour);
+  if (!p.cells.empty() && (p.cells[0].rect.x1 - p.cells[0].rect.x0) * l.zoom >= 8.0)
+    for (const HeatmapCell& cell : p.cells)  // each tile's top and left edge, on pixel centres
+      c.polyline({{sx(cell.rect.x0) + 0.5, sy(cell.rect.y1)},
+                  {sx(cell.rect.x0) + 0.5, sy(cell.rect.y0) + 0.5},
+                  {sx(cell.rect.x1), sy(cell.rect.y0) + 0.5}},
+                 kGrid);
+  c.outline(l.map_x - 0.5, l.map_y - 0.5, l.map_w + 1, l.map_h + 1, kInk);
+}
+
+// Frame pixel coordinates along the top-left origin: x below the map, y to its left.
+void draw_pixel_axes(Chart& c, const HeatmapPlot& p, const Layout& l) {
+  const double below = l.map_y + l.map_h;
+  for (double x : ticks(0, p.width, tick_step(p.width, 6))) {
+    const double at = std::round(l.map_x + x * l.zoom) + 0.5;
+    c.line({at, below}, {at, below + kTick}, kGrey);
+    c.text({at, below + kTick + kSmall.size}, number(x), kSmall, kGrey, Align::centre);
+  }
+  for (double y : ticks(0, p.height, tick_step(p.height, 6))) {
+    const double at = std::round(l.map_y + y * l.zoom) + 0.5;
+    c.line({l.map_x - kTick, at}, {l.map_x, at}, kGrey);
+    c.text({l.map_x - kTick - 3, at + 4}, number(y), kSmall, kGrey, Align::right);
+  }
+  c.text({l.map_x + l.map_w / 2, below + kTick + 2 * kSmall.size + 8}, "x (pixels)", kSmall, kGrey, Align::centre);
+  c.text({kMargin + kSmall.size, l.map_y + l.map_h / 2}, "y (pixels)", kSmall, kGrey, Align::centre, 90.0);
+}
+
+void draw_colour_bar(Chart& c, const HeatmapPlot& p, const Layout& l) {
+  const double top = l.map_y, bottom = l.map_y + l.bar_h, right = l.bar_x + kBarWidth;
+  c.vertical_gradient(l.bar_x, top, kBarWidth, l.bar_h, viridis_ramp(33));
+  c.outline(l.bar_x - 0.5, top - 0.5, kBarWidth + 1, l.bar_h + 1, kInk);
+  double labels = 0.0;
+  for (double v : p.bar_ticks) {
+    const double y = p.bar_max > 0 ? bottom - v / p.bar_max * l.bar_h : bottom;
+    c.line({right, y}, {right + kTick, y}, kInk);
+    c.text({right + kTick + 4, y + 4}, number(v), kLabel, kInk);
+    labels = std::max(labels, text_width(number(v), kLabel));
+  }
+  c.text({right + kTick + 4 + labels + 8 + kLabel.size, top + l.bar_h / 2}, "CPU time per tile (" + p.unit + ")",
+         kLabel, kInk, Align::centre, 90.0);
 }
 
 }  // namespace
 
-Canvas draw_heatmap(const FrameProfile& profile, const HeatmapParams& params) {
-  const Layout l = layout(profile.plan.params);
-  const std::string summary = summary_line(profile);
-  const int line = kFontHeight * kFont + 6;
-  const int width = std::max(l.bar_x + kBarWidth + 10 + text_width("0000.0", kFont) + kMargin,
-                             2 * kMargin + std::max(text_width(summary, kFont), text_width(params.title, kFont)));
-  const int height = l.map_y + std::max(l.map_h, 120) + line + 2 * kMargin;
-  Canvas c(width, height, kPaper);
-  const std::vector<double> s = tile_seconds(profile, TileClock::cpu);
-  const double max_seconds = s.empty() ? 0.0 : *std::max_element(s.begin(), s.end());
-  c.text(kMargin, kMargin, params.title, kFont, kInk);
-  draw_tiles(c, profile, l, max_seconds);
-  draw_colour_bar(c, l, max_seconds);
-  c.text(kMargin, l.map_y + std::max(l.map_h, 120) + kMargin, summary, kFont, kInk);
-  return c;
+HeatmapPlot heatmap_plot(const FrameProfile& profile, const HeatmapParams& params) {
+  HeatmapPlot p;
+  p.title = params.title;
+  p.width = profile.plan.params.width;
+  p.height = profile.plan.params.height;
+  const std::vector<double> seconds = tile_seconds(profile, TileClock::cpu);
+  p.summary = summary_line(profile, seconds);
+  const double max = seconds.empty() ? 0.0 : *std::max_element(seconds.begin(), seconds.end());
+  std::vector<double> t(seconds.size(), 0.0);
+  for (std::size_t i = 0; i < t.size(); ++i) t[i] = max > 0 ? seconds[i] / max : 0.0;
+  const std::vector<Colour> colours = viridis(t);
+  for (std::size_t i = 0; i < seconds.size(); ++i) p.cells.push_back({profile.plan.tiles[i], seconds[i], colours[i]});
+  const double scale = max >= 1.0 ? 1.0 : 1e3;
+  p.unit = max >= 1.0 ? "s" : "ms";
+  p.bar_max = max * scale;
+  if (p.bar_max > 0) p.bar_ticks = ticks(0, p.bar_max, tick_step(p.bar_max, 5));
+  return p;
 }
 
 void write_heatmap(const std::string& path, const FrameProfile& profile, const HeatmapParams& params) {
-  const Canvas c = draw_heatmap(profile, params);
-  write_rgb8_image(path, c.width, c.height, c.rgb);
+  const HeatmapPlot p = heatmap_plot(profile, params);
+  const Layout l = layout(p);
+  Chart c(path, l.width, l.height);
+  c.text({kMargin, kMargin + kTitle.size}, p.title, kTitle, kInk);
+  draw_tiles(c, p, l);
+  draw_pixel_axes(c, p, l);
+  draw_colour_bar(c, p, l);
+  c.text({kMargin, l.bottom + 14 + kLabel.size}, p.summary, kLabel, kInk);
+  c.write();
 }
 
 }  // namespace tessera

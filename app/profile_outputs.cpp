@@ -1,8 +1,8 @@
 #include "app/profile_outputs.h"
 
+#include "app/chart.h"
 #include "app/heatmap.h"
 #include "renderer/file_output.h"
-#include "renderer/image_output.h"
 #include "renderer/profile_json.h"
 
 namespace tessera {
@@ -10,7 +10,7 @@ namespace tessera {
 void check_profile_outputs(const ProfileOutputs& o) {
   if (!o.stats_json.empty()) check_writable_path(o.stats_json);
   if (!o.trace.empty()) check_writable_path(o.trace);
-  if (!o.heatmap.empty()) check_output_path(o.heatmap);
+  if (!o.heatmap.empty()) check_chart_path(o.heatmap);
 }
 
 void write_profile_outputs(const ProfileOutputs& o, const RenderResult& result, const std::string& title) {

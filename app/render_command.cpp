@@ -47,7 +47,8 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
                   "Write a Chrome trace-event timeline (FILE.json: one track per thread, one slice per tile) "
                   "for Perfetto (ui.perfetto.dev) or chrome://tracing");
   cmd->add_option("--heatmap", o.heatmap,
-                  "Write the CPU time spent on each tile as a colour map with a legend (FILE.png)");
+                  "Write the CPU time spent on each tile as a colour map with pixel axes and a colour bar in ms or s "
+                  "(FILE.png or any 8-bit image format; FILE.svg for a vector drawing)");
   cmd->add_option("--seed", o.seed, "Seed of every random number (same seed, same image, for any thread count)")
       ->check(CLI::Range(0LL, 2147483647LL))->capture_default_str();
   cmd->add_option("--sampler", o.sampler,

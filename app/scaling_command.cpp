@@ -12,6 +12,7 @@
 #include "app/interrupt.h"
 #include "app/progress.h"
 #include "app/render_setup.h"
+#include "app/scaling_plot.h"
 #include "app/scaling_report.h"
 #include "renderer/file_output.h"
 #include "renderer/render.h"
@@ -166,7 +167,7 @@ int run_scaling(const ScalingOptions& o) {
   const std::string md = scaling_markdown(report);
   write_text_file((out / "scaling.md").string(), md);
   write_text_file((out / "scaling.csv").string(), scaling_csv(report));
-  write_text_file((out / "scaling.svg").string(), scaling_svg(report));
+  write_scaling_plot((out / "scaling.svg").string(), report);
   if (!o.quiet) {
     fmt::print("{}\n", md);
     fmt::print(stderr, "tessera: wrote {0}/scaling.md, {0}/scaling.csv and {0}/scaling.svg\n", dir);

@@ -1,11 +1,9 @@
-// The speedup plot of tessera scaling as a hand-written SVG: axes with ticks and labels,
-// the ideal line, a dashed mark at the core count, one line with markers per scheduler.
+#include "app/scaling_plot.h"
+
 #include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
-
-#include "app/scaling_report.h"
 
 namespace tessera {
 
@@ -13,100 +11,92 @@ namespace {
 
 constexpr double kWidth = 680, kHeight = 440, kLeft = 64, kRight = 150, kTop = 48, kBottom = 56;
 // Okabe-Ito colours: distinguishable by colour-blind readers.
-constexpr const char* kColours[] = {"#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9"};
+constexpr unsigned kColours[] = {0x0072B2, 0xD55E00, 0x009E73, 0xCC79A7, 0xE69F00, 0x56B4E9};
+const Colour kInk = hex_colour(0x333333), kGridLine = hex_colour(0xe4e4e4), kIdeal = hex_colour(0x888888),
+             kCores = hex_colour(0xaaaaaa);
+const Font kTitle{15.0}, kLabel{13.0}, kSmall{11.0};
+const std::vector<double> kIdealDash{5, 4}, kCoresDash{2, 3};
 
 struct Axes {
-  double x_min, x_max, y_max;
-  double px(double x) const { return kLeft + (x - x_min) / (x_max - x_min) * (kWidth - kLeft - kRight); }
-  double py(double y) const { return kHeight - kBottom - y / y_max * (kHeight - kTop - kBottom); }
+  const ScalingPlot& p;
+  double x(double v) const { return kLeft + (v - p.x_min) / (p.x_max - p.x_min) * (kWidth - kLeft - kRight); }
+  double y(double v) const { return kHeight - kBottom - v / p.y_max * (kHeight - kTop - kBottom); }
+  Point at(Point v) const { return {x(v.first), y(v.second)}; }
 };
 
-// The smallest step of 1, 2 or 5 x 10^k that needs at most `most` ticks over `range`.
-double tick_step(double range, int most) {
-  for (double p = 1.0;; p *= 10.0)
-    for (double m : {1.0, 2.0, 5.0})
-      if (range / (m * p) <= most) return m * p;
-}
-
-std::string xml_escape(const std::string& in) {
-  std::string out;
-  for (char c : in) out += c == '&' ? "&amp;" : c == '<' ? "&lt;" : c == '>' ? "&gt;" : std::string(1, c);
-  return out;
-}
-
-std::string text(double x, double y, const std::string& s, const char* anchor = "middle", int size = 13) {
-  return fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"{}\" font-size=\"{}\">{}</text>\n", x, y, anchor,
-                     size, s);
-}
-
-std::string line(double x0, double y0, double x1, double y1, const std::string& style) {
-  return fmt::format("<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" {}/>\n", x0, y0, x1, y1, style);
-}
-
-std::string grid_and_ticks(const Axes& a) {
-  std::string s;
-  const double xs = tick_step(a.x_max - 1, 12), ys = tick_step(a.y_max, 8);
-  for (double x = 1; x <= a.x_max + 1e-9; x += xs) {
-    s += line(a.px(x), a.py(0), a.px(x), a.py(a.y_max), "stroke=\"#e4e4e4\"");
-    s += text(a.px(x), a.py(0) + 18, fmt::format("{:g}", x));
+void draw_grid_and_axes(Chart& c, const Axes& a) {
+  const ScalingPlot& p = a.p;
+  for (double x : p.x_ticks) {
+    c.line({a.x(x), a.y(0)}, {a.x(x), a.y(p.y_max)}, kGridLine);
+    c.text({a.x(x), a.y(0) + 18}, fmt::format("{:g}", x), kLabel, kInk, Align::centre);
   }
-  for (double y = 0; y <= a.y_max + 1e-9; y += ys) {
-    s += line(a.px(a.x_min), a.py(y), a.px(a.x_max), a.py(y), "stroke=\"#e4e4e4\"");
-    s += text(a.px(a.x_min) - 8, a.py(y) + 4, fmt::format("{:g}", y), "end");
+  for (double y : p.y_ticks) {
+    c.line({a.x(p.x_min), a.y(y)}, {a.x(p.x_max), a.y(y)}, kGridLine);
+    c.text({a.x(p.x_min) - 8, a.y(y) + 4}, fmt::format("{:g}", y), kLabel, kInk, Align::right);
   }
-  s += line(a.px(a.x_min), a.py(0), a.px(a.x_max), a.py(0), "stroke=\"#333\"");
-  s += line(a.px(a.x_min), a.py(0), a.px(a.x_min), a.py(a.y_max), "stroke=\"#333\"");
-  s += text((a.px(a.x_min) + a.px(a.x_max)) / 2, kHeight - 14, "threads");
-  s += fmt::format("<text transform=\"translate(18 {:.1f}) rotate(-90)\" text-anchor=\"middle\" font-size=\"13\">"
-                   "speedup</text>\n", (a.py(0) + a.py(a.y_max)) / 2);
-  return s;
+  c.polyline({{a.x(p.x_min), a.y(p.y_max)}, {a.x(p.x_min), a.y(0)}, {a.x(p.x_max), a.y(0)}}, kInk);
+  c.text({(a.x(p.x_min) + a.x(p.x_max)) / 2, kHeight - 14}, p.x_label, kLabel, kInk, Align::centre);
+  c.text({22, (a.y(0) + a.y(p.y_max)) / 2}, p.y_label, kLabel, kInk, Align::centre, 90.0);
+  if (p.cores >= 1 && p.cores < p.x_max) {
+    c.line({a.x(p.cores), a.y(0)}, {a.x(p.cores), a.y(p.y_max)}, kCores, 1.0, kCoresDash);
+    c.text({a.x(p.cores) + 4, a.y(p.y_max) + 14}, fmt::format("{} cores", p.cores), kSmall, kInk);
+  }
 }
 
-std::string series(const Axes& a, const ScalingReport& r, std::size_t k) {
-  std::string points, marks;
-  for (const ScalingRow& row : r.rows) {
-    if (row.scheduler != r.schedulers[k]) continue;
-    points += fmt::format("{:.1f},{:.1f} ", a.px(row.threads), a.py(row.speedup));
-    marks += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"3.5\" fill=\"{}\"/>\n", a.px(row.threads),
-                         a.py(row.speedup), kColours[k % 6]);
-  }
-  return fmt::format("<polyline points=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"2\"/>\n", points,
-                     kColours[k % 6]) + marks;
+void draw_series(Chart& c, const Axes& a, const PlotSeries& s) {
+  std::vector<Point> points;
+  for (const Point& v : s.points) points.push_back(a.at(v));
+  c.polyline(points, s.colour, s.dashed ? 1.0 : 2.0, s.dashed ? kIdealDash : std::vector<double>{});
+  if (s.markers)
+    for (const Point& at : points) c.circle(at, 3.5, s.colour);
 }
 
-std::string legend(const ScalingReport& r) {
-  std::string s;
+void draw_legend(Chart& c, const ScalingPlot& p) {
   const double x = kWidth - kRight + 20;
   double y = kTop + 10;
-  for (std::size_t k = 0; k < r.schedulers.size(); ++k, y += 22) {
-    s += line(x, y, x + 24, y, fmt::format("stroke=\"{}\" stroke-width=\"2\"", kColours[k % 6]));
-    s += text(x + 32, y + 4, r.schedulers[k], "start");
+  for (const PlotSeries& s : p.series) {
+    c.line({x, y}, {x + 24, y}, s.colour, s.dashed ? 1.0 : 2.0, s.dashed ? kIdealDash : std::vector<double>{});
+    c.text({x + 32, y + 4}, s.name, kLabel, kInk);
+    y += 22;
   }
-  s += line(x, y, x + 24, y, "stroke=\"#888\" stroke-dasharray=\"5 4\"");
-  return s + text(x + 32, y + 4, "ideal", "start");
 }
 
 }  // namespace
 
-std::string scaling_svg(const ScalingReport& r) {
+ScalingPlot scaling_plot(const ScalingReport& r) {
+  ScalingPlot p;
+  p.title = fmt::format("{}: speedup against threads ({}x{}, {} spp, {} cores)", r.scene, r.width, r.height, r.spp,
+                        r.cores);
+  p.x_label = "threads";
+  p.y_label = "speedup (one-thread time / wall time)";
+  p.x_max = std::max(2.0, static_cast<double>(r.threads_max));
   double top = r.threads_max;
   for (const ScalingRow& row : r.rows) top = std::max(top, row.speedup);
-  const Axes a{1.0, std::max(2.0, static_cast<double>(r.threads_max)), std::ceil(top * 1.1)};
-  std::string s = fmt::format(
-      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{0}\" height=\"{1}\" viewBox=\"0 0 {0} {1}\" "
-      "font-family=\"sans-serif\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n", kWidth, kHeight);
-  s += text(kLeft, 24,
-            fmt::format("{}: speedup against threads ({}x{}, {} spp, {} cores)", xml_escape(r.scene), r.width,
-                        r.height, r.spp, r.cores),
-            "start", 15);
-  s += grid_and_ticks(a);
-  s += line(a.px(1), a.py(1), a.px(a.x_max), a.py(a.x_max), "stroke=\"#888\" stroke-dasharray=\"5 4\"");
-  if (r.cores >= 1 && r.cores < a.x_max) {
-    s += line(a.px(r.cores), a.py(0), a.px(r.cores), a.py(a.y_max), "stroke=\"#aaa\" stroke-dasharray=\"2 3\"");
-    s += text(a.px(r.cores) + 4, a.py(a.y_max) + 14, fmt::format("{} cores", r.cores), "start", 11);
+  p.y_max = std::ceil(top * 1.1);
+  p.x_ticks = ticks(p.x_min, p.x_max, std::max(1.0, tick_step(p.x_max - p.x_min, 12)));
+  p.y_ticks = ticks(0.0, p.y_max, std::max(1.0, tick_step(p.y_max, 8)));
+  for (std::size_t k = 0; k < r.schedulers.size(); ++k) {
+    PlotSeries s{r.schedulers[k], hex_colour(kColours[k % 6]), {}};
+    for (const ScalingRow& row : r.rows)
+      if (row.scheduler == r.schedulers[k]) s.points.push_back({row.threads, row.speedup});
+    p.series.push_back(std::move(s));
   }
-  for (std::size_t k = 0; k < r.schedulers.size(); ++k) s += series(a, r, k);
-  return s + legend(r) + "</svg>\n";
+  p.series.push_back({"ideal", kIdeal, {{1.0, 1.0}, {p.x_max, p.x_max}}, true, false});
+  p.cores = r.cores;
+  return p;
+}
+
+void write_scaling_plot(const std::string& path, const ScalingReport& r) {
+  const ScalingPlot p = scaling_plot(r);
+  const Axes a{p};
+  Chart c(path, static_cast<int>(kWidth), static_cast<int>(kHeight));
+  c.text({kLeft, 24}, p.title, kTitle, kInk);
+  draw_grid_and_axes(c, a);
+  // The ideal line first, under the measured ones.
+  draw_series(c, a, p.series.back());
+  for (std::size_t k = 0; k + 1 < p.series.size(); ++k) draw_series(c, a, p.series[k]);
+  draw_legend(c, p);
+  c.write();
 }
 
 }  // namespace tessera

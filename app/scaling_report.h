@@ -1,5 +1,5 @@
-// The results of tessera scaling and the files they are written to: a Markdown table, a
-// CSV file and an SVG plot of speedup against threads.
+// The results of tessera scaling and the files they are written to: a Markdown table and a
+// CSV file (the plot of speedup against threads: app/scaling_plot.h).
 #pragma once
 
 #include <string>
@@ -29,6 +29,5 @@ struct ScalingReport {
 
 std::string scaling_markdown(const ScalingReport& report);
 std::string scaling_csv(const ScalingReport& report);
-std::string scaling_svg(const ScalingReport& report);  // scaling_plot.cpp
 
 }  // namespace tessera

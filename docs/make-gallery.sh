@@ -11,24 +11,9 @@
 # after the other, each on all cores; the time of each is printed. Intermediate EXRs go to a
 # temporary directory that is deleted at the end. About 9 minutes on 2 shared cores
 # (379 s measured before the material scenes, which took 150 s).
-set -euo pipefail
-root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-bin=${TESSERA:-$root/build/tessera}
-if [[ ! -x "$bin" ]]; then
-  echo "make-gallery.sh: $bin is not there; build it first (./tessera --version), or set TESSERA=path/to/tessera" >&2
-  exit 1
-fi
-command -v oiiotool >/dev/null || { echo "make-gallery.sh: needs oiiotool (apt-get install openimageio-tools)" >&2; exit 1; }
-bin=$(realpath -- "$bin")
-cd "$root"
-tessera() { "$bin" "$@"; }
-
-run() {  # prints the command as docs/gallery.md shows it, runs it, prints its time
-  echo "\$ $*" >&2
-  local t0=$SECONDS
-  "$@"
-  echo "  ($((SECONDS - t0)) s)" >&2
-}
+# shellcheck source=docs/prelude.sh
+source "$(dirname "${BASH_SOURCE[0]}")/prelude.sh"
+need_oiiotool
 
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT

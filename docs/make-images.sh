@@ -8,24 +8,9 @@
 # Needs oiiotool (Debian 12: openimageio-tools, in third_party_config/debian-packages.txt)
 # to turn the EXR's AOV layers into PNGs. About 3 to 6 minutes on 2 cores (198 s measured); renders run one after
 # the other, each on all cores. The one intermediate file, helmet.exr, is deleted at the end.
-set -euo pipefail
-root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-bin=${TESSERA:-$root/build/tessera}
-if [[ ! -x "$bin" ]]; then
-  echo "make-images.sh: $bin is not there; build it first (./tessera --version), or set TESSERA=path/to/tessera" >&2
-  exit 1
-fi
-command -v oiiotool >/dev/null || { echo "make-images.sh: needs oiiotool (apt-get install openimageio-tools)" >&2; exit 1; }
-bin=$(realpath -- "$bin")
-cd "$root"
-tessera() { "$bin" "$@"; }
-
-run() {  # prints the command as docs/usage.md shows it, runs it, prints its time
-  echo "\$ $*" >&2
-  local t0=$SECONDS
-  "$@"
-  echo "  ($((SECONDS - t0)) s)" >&2
-}
+# shellcheck source=docs/prelude.sh
+source "$(dirname "${BASH_SOURCE[0]}")/prelude.sh"
+need_oiiotool
 
 mkdir -p docs/images
 trap 'rm -f helmet.exr' EXIT

@@ -10,14 +10,10 @@
 #
 # Needs python3 (tools/trace-to-svg.py, tools/schedule-model.py). About 15 minutes on 2
 # shared cores with REPEAT=5.
-set -euo pipefail
-root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-bin=${TESSERA:-$root/build/tessera}
+# shellcheck source=docs/prelude.sh
+source "$(dirname "${BASH_SOURCE[0]}")/prelude.sh"
 repeat=${REPEAT:-5}
 stages=${STAGES:-scaling figures orders model}
-[[ -x "$bin" ]] || { echo "make-load-balancing.sh: build $bin first (./tessera --version), or set TESSERA" >&2; exit 1; }
-bin=$(realpath -- "$bin")
-cd "$root"
 sky=scenes/paper/sky-gradient.hdr
 out=docs/load-balancing
 tmp=$(mktemp -d)

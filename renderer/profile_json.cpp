@@ -89,7 +89,8 @@ json metadata_event(const char* name, int tid, json args) {
 
 json stats_json(const FrameProfile& p, const RenderStats& stats) {
   const WorkPlanParams& pp = p.plan.params;
-  return {{"scheduler", scheduler_name(pp.scheduler)},
+  return {{"schema_version", kStatsSchemaVersion},
+          {"scheduler", scheduler_name(pp.scheduler)},
           {"tile_order", tile_order_name(pp.order)},
           {"threads", pp.threads},
           {"width", pp.width},

@@ -10,7 +10,11 @@
 
 namespace tessera {
 
-// Everything in the profile: the frame's load balance, each thread, each wave, each tile's
+// The --stats-json schema documented in docs/load-balancing.md; raise it when a field is
+// renamed, removed or changes meaning (adding a field keeps it).
+constexpr int kStatsSchemaVersion = 1;
+
+// Everything in the profile, under "schema_version": the frame's load balance, each thread, each wave, each tile's
 // summed cost and, when recorded, every tile run (thread, start, end, samples, rays).
 nlohmann::json stats_json(const FrameProfile& profile, const RenderStats& stats);
 

@@ -86,9 +86,13 @@ def cross(a, b):
     return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
 
 
+def length(a):
+    return math.sqrt(dot(a, a))
+
+
 def normalize(a):
-    length = math.sqrt(dot(a, a))
-    return tuple(x / length + 0.0 for x in a)  # + 0.0: no -0.0
+    n = length(a)
+    return tuple(x / n + 0.0 for x in a)  # + 0.0: no -0.0
 
 
 def quaternion_between(a, b):

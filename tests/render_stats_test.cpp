@@ -189,5 +189,12 @@ TEST(StatsJson, HoldsTheFrameThreadsWavesTilesAndRuns) {
     EXPECT_TRUE(s["tile_runs"][0].contains(key)) << key;
 }
 
+TEST(StatsJson, NamesItsSchemaVersion) {
+  const RenderResult r = profiled(SchedulerKind::tiles);
+  const nlohmann::json s = stats_json(r.profile, r.stats);
+  EXPECT_EQ(s["schema_version"], 1);  // docs/load-balancing.md describes version 1
+  EXPECT_EQ(kStatsSchemaVersion, 1);
+}
+
 }  // namespace
 }  // namespace tessera

@@ -7,16 +7,29 @@ find_package(embree 3.13 REQUIRED)
 # oneTBB 2021: parallel_for over image tiles (libtbb-dev). Target: TBB::tbb
 find_package(TBB REQUIRED)
 
-# OpenEXR 3.1 + Imath: HDR frame output with custom header attributes (libopenexr-dev).
-find_package(OpenEXR 3 REQUIRED)
-
-# OpenImageIO 2.4: PNG/JPEG/PPM output and HDR/EXR environment-map input.
-# Trap: Debian's OpenImageIOTargets.cmake names /usr/include/opencv4, which does not exist
-# unless OpenCV's headers are installed, and CMake then refuses the target. pkg-config's
-# OpenImageIO.pc is correct, so use it instead of find_package(OpenImageIO).
 find_package(PkgConfig REQUIRED)
+
+# OpenEXR 3.1 + Imath: HDR frame output with custom header attributes (libopenexr-dev).
+# Trap: find_package(OpenEXR) loads Debian's Imath config, whose ImathTargets.cmake also
+# imports Imath::PyImath_Python3_11 and so prints a "references the file libPyImath... but
+# this file does not exist" message on every configure unless python3-imath is installed.
+# OpenEXR.pc (which requires Imath.pc) names the same headers and libraries without the
+# Python bindings, so use pkg-config. Target: tessera::openexr
+pkg_check_modules(OPENEXR REQUIRED IMPORTED_TARGET OpenEXR>=3)
+add_library(tessera::openexr ALIAS PkgConfig::OPENEXR)
+
+# OpenImageIO 2.4: PNG/JPEG/PPM output, HDR/EXR environment-map input, and the heat map's
+# colour map (ImageBufAlgo::color_map). Trap: Debian's OpenImageIOTargets.cmake names
+# /usr/include/opencv4, which does not exist unless OpenCV's headers are installed, and CMake
+# then refuses the target. pkg-config's OpenImageIO.pc is correct, so use it instead of
+# find_package(OpenImageIO).
 pkg_check_modules(OIIO REQUIRED IMPORTED_TARGET OpenImageIO)
 add_library(tessera::oiio ALIAS PkgConfig::OIIO)
+
+# Cairo 1.16: the charts tessera draws (the heat map and the scaling plot), anti-aliased with
+# FreeType text, as PNG or SVG (libcairo2-dev). Target: tessera::cairo
+pkg_check_modules(CAIRO REQUIRED IMPORTED_TARGET cairo>=1.16 cairo-svg)
+add_library(tessera::cairo ALIAS PkgConfig::CAIRO)
 
 # tinygltf 2.7: glTF 2.0 JSON/GLB parsing (libtinygltf-dev). Debian ships it as a shared
 # library with stb_image and nlohmann-json built in. Target: TinyGLTF::TinyGLTF
@@ -35,7 +48,7 @@ find_package(CLI11 REQUIRED)
 # fmt: message and table formatting (libfmt-dev).
 find_package(fmt REQUIRED)
 
-# nlohmann-json: JSON output for stats (nlohmann-json3-dev), header only.
+# nlohmann-json: every JSON document tessera reads or writes (nlohmann-json3-dev), header only.
 find_package(nlohmann_json REQUIRED)
 
 if(TESSERA_BUILD_TESTS)

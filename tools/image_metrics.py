@@ -137,60 +137,24 @@ def edge_mask(ref_path, albedo_threshold=0.1, normal_threshold=0.25):
     return dilate(feature_edges(albedo, albedo_threshold, "max") | feature_edges(normal, normal_threshold, "norm"))
 
 
-# --- error-map: viridis and a 5x7 bitmap font (those of app/colormap.cpp and app/canvas.cpp) ---
+# --- error-map: drawn with OpenImageIO (color_map's viridis, render_text in DejaVu Sans), as tessera's heat map ---
 
-VIRIDIS = np.array([
-    [0.2777273272234177, 0.005407344544966578, 0.3340998053353061],
-    [0.1050930431085774, 1.404613529898575, 1.384590162594685],
-    [-0.3308618287255563, 0.214847559468213, 0.09509516302823659],
-    [-4.634230498983486, -5.799100973351585, -19.33244095627987],
-    [6.228269936347081, 14.17993336680509, 56.69055260068105],
-    [4.776384997670288, -13.74514537774601, -65.35303263337234],
-    [-5.435455855934631, 4.645852612178535, 26.3124352495832]])
+FONT, FONT_SIZE = "DejaVuSans", 12  # fonts-dejavu-core
 
 
 def viridis(t):
-    t = np.clip(t, 0, 1)[..., None]
-    v = np.zeros(t.shape[:-1] + (3,)) + VIRIDIS[6]
-    for k in range(5, -1, -1):
-        v = v * t + VIRIDIS[k]
-    return np.clip(v, 0, 1)
+    """sRGB display values of viridis at each t (any shape, clamped to [0, 1])."""
+    t = np.clip(np.asarray(t, dtype=np.float32), 0, 1)
+    n = t.size
+    buf = oiio.ImageBuf(oiio.ImageSpec(n, 1, 1, "float"))
+    buf.set_pixels(oiio.ROI(0, n, 0, 1), t.reshape(1, n, 1))
+    # OpenImageIO's maps are linear light, like its images; a PNG wants sRGB.
+    srgb = oiio.ImageBufAlgo.colorconvert(oiio.ImageBufAlgo.color_map(buf, 0, "viridis"), "linear", "sRGB")
+    return srgb.get_pixels(oiio.FLOAT).reshape(t.shape + (3,))
 
 
-GLYPHS = {
-    '0': ".###.#...##..###.#.###..##...#.###.", '1': "..#...##....#....#....#....#...###.",
-    '2': ".###.#...#....#...#...#...#...#####", '3': "#####...#...#.....#.....##...#.###.",
-    '4': "...#...##..#.#.#..#.#####...#....#.", '5': "######....####.....#....##...#.###.",
-    '6': "..##..#...#....####.#...##...#.###.", '7': "#####....#...#...#...#....#....#...",
-    '8': ".###.#...##...#.###.#...##...#.###.", '9': ".###.#...##...#.####....#...#..##..",
-    'A': ".###.#...##...#######...##...##...#", 'C': ".###.#...##....#....#....#...#.###.",
-    'E': "######....#....####.#....#....#####", 'G': ".###.#...##....#.####...##...#.####",
-    'I': ".###...#....#....#....#....#...###.", 'L': "#....#....#....#....#....#....#####",
-    'M': "#...###.###.#.##.#.##...##...##...#", 'N': "#...##...###..##.#.##..###...##...#",
-    'O': ".###.#...##...##...##...##...#.###.", 'Q': ".###.#...##...##...##.#.##..#..##.#",
-    'R': "####.#...##...#####.#.#..#..#.#...#", 'S': ".#####....#.....###.....#....#####.",
-    'T': "#####..#....#....#....#....#....#..", 'U': "#...##...##...##...##...##...#.###.",
-    'V': "#...##...##...##...##...#.#.#...#..", 'W': "#...##...##...##.#.##.#.##.#.#.#.#.",
-    '.': "..........................##...##..", ',': ".....................##....#...#...",
-    ':': "......##...##........##...##.......", '-': "...............#####...............",
-    '+': ".......#....#..#####..#....#.......", '(': "...#...#...#....#....#.....#.....#.",
-    ')': ".#.....#.....#....#....#...#...#...", '/': ".........#...#...#...#...#.........",
-    '=': "..........#####.....#####..........", 'D': "###..#..#.#...##...##...##..#.###..",
-    'P': "####.#...##...#####.#....#....#....", 'X': "#...##...#.#.#...#...#.#.#...##...#",
-    'F': "######....#....####.#....#....#....", 'H': "#...##...##...#######...##...##...#",
-    'B': "####.#...##...#####.#...##...#####.", 'K': "#...##..#.#.#..##...#.#..#..#.#...#",
-}
-
-
-def text(img, x, y, s, colour=(1.0, 1.0, 1.0)):
-    """Draws `s` (capitals; unknown characters blank) with its top-left corner at (x, y)."""
-    for i, ch in enumerate(s.upper()):
-        rows = GLYPHS.get(ch)
-        for r in range(7):
-            for c in range(5):
-                px, py = x + 6 * i + c, y + r
-                if rows and rows[r * 5 + c] == '#' and 0 <= py < img.shape[0] and 0 <= px < img.shape[1]:
-                    img[py, px] = colour
+def text_width(s):
+    return oiio.ImageBufAlgo.text_size(s, FONT_SIZE, FONT).width
 
 
 def error_map(img, ref, lo=-4.0, hi=0.0):
@@ -199,16 +163,20 @@ def error_map(img, ref, lo=-4.0, hi=0.0):
     e = rel_sq_error(img, ref).mean(axis=2)
     t = (np.log10(np.maximum(e, 1e-30)) - lo) / (hi - lo)
     h, w = e.shape
-    labels = [f"1E{lo:+.0f}", f"1E{hi:+.0f}", f"REL. SQ. ERROR, MEAN {e.mean():.2E}"]
-    width = max(w, 6 * len(labels[2]) + 8)
-    out = np.zeros((h + 36, width, 3))
+    low, high, title = f"1e{lo:+.0f}", f"1e{hi:+.0f}", f"relative squared error, mean {e.mean():.2e}"
+    width = max(w, text_width(title) + 8)
+    out = np.zeros((h + LEGEND_ROWS, width, 3), dtype=np.float32)
     out[:h, :w] = viridis(t)
-    bar = np.linspace(0, 1, width - 8)
-    out[h + 4:h + 14, 4:width - 4] = viridis(bar)[None, :, :]
-    text(out, 4, h + 17, labels[0])
-    text(out, width - 4 - 6 * len(labels[1]) + 1, h + 17, labels[1])
-    text(out, 4, h + 27, labels[2])
-    return out
+    out[h + 4:h + 14, 4:width - 4] = viridis(np.linspace(0, 1, width - 8))[None, :, :]
+    buf = oiio.ImageBuf(oiio.ImageSpec(width, h + LEGEND_ROWS, 3, "float"))
+    buf.set_pixels(oiio.ROI(0, width, 0, h + LEGEND_ROWS), out)
+    for x, y, label, align in ((4, h + 28, low, "left"), (width - 4, h + 28, high, "right"), (4, h + 46, title, "left")):
+        if not oiio.ImageBufAlgo.render_text(buf, x, y, label, FONT_SIZE, FONT, (1, 1, 1), align):
+            raise Bad(f"cannot draw the legend: {buf.geterror()} (is fonts-dejavu-core installed?)")
+    return buf.get_pixels(oiio.FLOAT)
+
+
+LEGEND_ROWS = 52  # the colour bar and two lines of labels below the map
 
 
 def render_time(path):
@@ -278,9 +246,10 @@ def selftest():
     f[5:, :, 5], f[5:, :, 3] = 0.0, 1.0
     write(p, f, ["Albedo.R", "Albedo.G", "Albedo.B", "N.X", "N.Y", "N.Z"])
     assert (np.flatnonzero(edge_mask(p).any(axis=1)) == [3, 4, 5, 6]).all()
-    # error map: zero error is viridis(0); the legend adds 36 rows below
+    # error map: zero error is viridis(0), matplotlib's (0.267, 0.005, 0.329); the legend adds rows below
     em = error_map(np.full((4, 6, 3), 0.5), np.full((4, 6, 3), 0.5))
-    assert em.shape[0] == 40 and np.allclose(em[0, 0], viridis(np.array(0.0)))
+    assert em.shape[0] == 4 + LEGEND_ROWS and np.allclose(em[0, 0], viridis(np.array(0.0)))
+    assert np.allclose(viridis(np.array([0.0, 1.0])), [[0.267, 0.005, 0.329], [0.993, 0.906, 0.144]], atol=0.01)
     # bad input: one clear message
     for call, words in [(lambda: read(a, ["noisy.R"]), "no channel noisy.R"),
                         (lambda: read(os.path.join(tmp, "none.exr")), "no such file"),

@@ -28,7 +28,9 @@ import sys
 
 sys.dont_write_bytecode = True  # no __pycache__ in scenes/
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from gltf_builder import BufferBuilder, basis_quaternion, generator_arguments, write_or_check  # noqa: E402  (scenes/gltf_builder.py)
+from gltf_builder import (  # noqa: E402  (scenes/gltf_builder.py)
+    BufferBuilder, add, basis_quaternion, clean, cross, dot, generator_arguments, length, normalize, scale, sub,
+    write_or_check)
 
 GENERATOR = "tessera scenes/paper/make_paper_scenes.py"
 SEED_FILE = os.path.join("seed", "grid_of_spheres.txt")
@@ -46,42 +48,6 @@ GROUND_DESIGN_MARGIN = 0.8
 SKY_WHITE = (1.0, 1.0, 1.0)
 SKY_BLUE = (0.5, 0.7, 1.0)
 
-# --- Small vector helpers (tuples of floats) ---------------------------------------------------
-
-
-def add(a, b):
-    return (a[0] + b[0], a[1] + b[1], a[2] + b[2])
-
-
-def sub(a, b):
-    return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
-
-
-def mul(a, s):
-    return (a[0] * s, a[1] * s, a[2] * s)
-
-
-def dot(a, b):
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-
-
-def cross(a, b):
-    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
-
-
-def length(a):
-    return math.sqrt(dot(a, a))
-
-
-def normalize(a):
-    n = length(a)
-    return (a[0] / n, a[1] / n, a[2] / n)
-
-
-def clean(v, places=12):
-    return round(v, places) + 0.0  # + 0.0: no -0.0
-
-
 def closest_distance_to_origin(a, b, c):
     """Distance from the origin to the closest point of triangle abc (Ericson, RTCD 5.1.5)."""
     p = (0.0, 0.0, 0.0)
@@ -95,20 +61,20 @@ def closest_distance_to_origin(a, b, c):
         return length(b)
     vc = d1 * d4 - d3 * d2
     if vc <= 0.0 and d1 >= 0.0 and d3 <= 0.0:
-        return length(add(a, mul(ab, d1 / (d1 - d3))))
+        return length(add(a, scale(ab, d1 / (d1 - d3))))
     cp = sub(p, c)
     d5, d6 = dot(ab, cp), dot(ac, cp)
     if d6 >= 0.0 and d5 <= d6:
         return length(c)
     vb = d5 * d2 - d1 * d6
     if vb <= 0.0 and d2 >= 0.0 and d6 <= 0.0:
-        return length(add(a, mul(ac, d2 / (d2 - d6))))
+        return length(add(a, scale(ac, d2 / (d2 - d6))))
     va = d3 * d6 - d5 * d4
     if va <= 0.0 and (d4 - d3) >= 0.0 and (d5 - d6) >= 0.0:
-        return length(add(b, mul(sub(c, b), (d4 - d3) / ((d4 - d3) + (d5 - d6)))))
+        return length(add(b, scale(sub(c, b), (d4 - d3) / ((d4 - d3) + (d5 - d6)))))
     denom = 1.0 / (va + vb + vc)
     v, w = vb * denom, vc * denom
-    return length(add(a, add(mul(ab, v), mul(ac, w))))
+    return length(add(a, add(scale(ab, v), scale(ac, w))))
 
 
 # --- Cameras -----------------------------------------------------------------------------------
@@ -149,8 +115,8 @@ class Camera:
         return self.f_px * math.sqrt(x * x + y * y + z * z) / (z * z)
 
     def ray_through(self, ndc_x, ndc_y):
-        d = add(add(mul(self.right, ndc_x * self.tan_half * self.aspect), mul(self.true_up, ndc_y * self.tan_half)),
-                mul(self.back, -1.0))
+        d = add(add(scale(self.right, ndc_x * self.tan_half * self.aspect), scale(self.true_up, ndc_y * self.tan_half)),
+                scale(self.back, -1.0))
         return normalize(d)
 
     def quaternion(self):
@@ -193,7 +159,7 @@ def icosphere(n):
         if key not in index_of:
             p = (0.0, 0.0, 0.0)
             for v, w in weights:
-                p = add(p, mul(base[v], float(w)))
+                p = add(p, scale(base[v], float(w)))
             index_of[key] = len(positions)
             positions.append(normalize(p))
         return index_of[key]
@@ -220,8 +186,8 @@ def silhouette_px_per_unit(camera, centre, radius):
     d = length(to_c)
     if d <= radius:
         return None
-    axis = mul(to_c, 1.0 / d)
-    circle_centre = add(camera.eye, mul(to_c, 1.0 - (radius * radius) / (d * d)))
+    axis = scale(to_c, 1.0 / d)
+    circle_centre = add(camera.eye, scale(to_c, 1.0 - (radius * radius) / (d * d)))
     circle_radius = radius * math.sqrt(d * d - radius * radius) / d
     helper = (1.0, 0.0, 0.0) if abs(axis[0]) < 0.9 else (0.0, 1.0, 0.0)
     u = normalize(cross(axis, helper))
@@ -229,7 +195,7 @@ def silhouette_px_per_unit(camera, centre, radius):
     best = None
     for k in range(256):
         phi = 2.0 * math.pi * k / 256
-        p = add(circle_centre, add(mul(u, circle_radius * math.cos(phi)), mul(v, circle_radius * math.sin(phi))))
+        p = add(circle_centre, add(scale(u, circle_radius * math.cos(phi)), scale(v, circle_radius * math.sin(phi))))
         if camera.in_frame(p):
             s = camera.px_per_unit(p)
             best = s if best is None else max(best, s)
@@ -347,7 +313,7 @@ class GroundSphere:
         out = []
         for t in tris:  # wind counter-clockwise seen from outside
             a, b, cc = (self.positions[i] for i in t)
-            mid = mul(add(add(a, b), cc), 1.0 / 3.0)
+            mid = scale(add(add(a, b), cc), 1.0 / 3.0)
             if dot(cross(sub(b, a), sub(cc, a)), sub(mid, c)) < 0.0:
                 t = (t[0], t[2], t[1])
             out.append(t)
@@ -365,14 +331,14 @@ class GroundSphere:
             for idx, t in enumerate(self.triangles):
                 band = 0 if idx < n else (len(self.rings) - 2 if idx >= len(self.triangles) - n else 1 + (idx - n) // (2 * n))
                 pts = [self.positions[k] for k in t]
-                mid = mul(add(add(pts[0], pts[1]), pts[2]), 1.0 / 3.0)
+                mid = scale(add(add(pts[0], pts[1]), pts[2]), 1.0 / 3.0)
                 if dot(sub(mid, self.centre), sub(cam.eye, mid)) <= 0.0:
                     continue  # faces away: hidden behind the ground's own horizon
                 samples = pts + [mid]
                 if not any(cam.in_frame(p, 0.05) for p in samples):
                     continue
-                scale = max(cam.px_per_unit(p) for p in samples if cam.to_camera(p)[2] > 1e-6)
-                e = max(e, band_dev[band] * scale)
+                px_per_unit = max(cam.px_per_unit(p) for p in samples if cam.to_camera(p)[2] > 1e-6)
+                e = max(e, band_dev[band] * px_per_unit)
             worst[cam.name] = e
         return worst
 
@@ -515,7 +481,7 @@ class SceneWriter:
         if inward:
             if self.inward is None:
                 positions, triangles, _ = icosphere(self.sphere_frequency)
-                self.inward = (self._vec3([mul(p, -1.0) for p in positions], False),
+                self.inward = (self._vec3([scale(p, -1.0) for p in positions], False),
                                self._indices([(t[0], t[2], t[1]) for t in triangles]))
             attributes = {"POSITION": self.unit_position, "NORMAL": self.inward[0]}
             indices = self.inward[1]
@@ -601,15 +567,15 @@ def frame_extent(camera, spheres):
     for centre, radius in spheres:
         to_c = sub(centre, camera.eye)
         d = length(to_c)
-        axis = mul(to_c, 1.0 / d)
-        cc = add(camera.eye, mul(to_c, 1.0 - (radius * radius) / (d * d)))
+        axis = scale(to_c, 1.0 / d)
+        cc = add(camera.eye, scale(to_c, 1.0 - (radius * radius) / (d * d)))
         cr = radius * math.sqrt(d * d - radius * radius) / d
         helper = (1.0, 0.0, 0.0) if abs(axis[0]) < 0.9 else (0.0, 1.0, 0.0)
         u = normalize(cross(axis, helper))
         v = cross(axis, u)
         for k in range(64):
             phi = 2.0 * math.pi * k / 64
-            q = camera.ndc(add(cc, add(mul(u, cr * math.cos(phi)), mul(v, cr * math.sin(phi)))))
+            q = camera.ndc(add(cc, add(scale(u, cr * math.cos(phi)), scale(v, cr * math.sin(phi)))))
             if q:
                 box = [min(box[0], q[0]), min(box[1], q[1]), max(box[2], q[0]), max(box[3], q[1])]
     return box
@@ -801,7 +767,7 @@ def adversarial():
     height = -lowest
     for _ in range(8):
         t = (height - cam.eye[1]) / ray[1]
-        centre = add(cam.eye, mul(ray, t))
+        centre = add(cam.eye, scale(ray, t))
         r2 = centre[0] ** 2 + centre[2] ** 2
         ground_y = BIG_GROUND_CENTRE[1] + math.sqrt(BIG_GROUND_RADIUS ** 2 - r2)
         height = ground_y - lowest
@@ -830,8 +796,8 @@ def rgbe(rgb):
         return bytes((0, 0, 0, 0))
     _, e = math.frexp(top)
     while True:
-        scale = math.ldexp(1.0, 8 - e)
-        m = [int(math.floor(c * scale + 0.5)) for c in rgb]
+        factor = math.ldexp(1.0, 8 - e)
+        m = [int(math.floor(c * factor + 0.5)) for c in rgb]
         if max(m) <= 255:
             return bytes((m[0], m[1], m[2], e + 128))
         e += 1
