@@ -33,6 +33,8 @@ struct RenderOptions {
   bool skip_existing = false;
   std::string shutter;  // --shutter OPEN,CLOSE in frames; empty: no motion blur
   std::string crop;  // --crop X0,X1,Y0,Y1 (fractions of the frame); empty: the whole frame
+  std::string view_transform = "filmic";  // display formats: the built-in view
+  std::string ocio_config, ocio_display, ocio_view;  // a studio's OCIO config and its view
   int motion_steps = 3;
   float aperture = 0.0f, focus_distance = 0.0f, fov = 0.0f;
   std::string background = "auto";

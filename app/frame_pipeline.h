@@ -52,6 +52,7 @@ struct FramePlan {
   int material_variant = -1;
   std::string material_variant_name;
   bool animated = false;  // some animation posed the scene (at scene_time(o))
+  DisplayParams display;  // the view of display-format outputs, checked buildable
 };
 // `framing`: the bounds the automatic camera frames instead of the scene's (null: the scene's).
 FramePlan plan_frame(const RenderOptions& o, const GltfLoadResult& loaded, const Bounds3* framing = nullptr);

@@ -124,8 +124,17 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
                 "which it turns on): RGB is the denoised image, noisy.R/G/B the beauty as rendered; the preview "
                 "shows the denoised one. Not applied to checkpoints or an interrupted frame");
   cmd->add_flag("--half", o.half, "Write 16-bit half floats to the EXR instead of 32-bit floats");
-  cmd->add_option("--exposure", o.exposure, "Exposure in stops applied to non-EXR outputs (display formats: then sRGB encoded; .hdr/.tif/.pfm: linear)")
+  cmd->add_option("--exposure", o.exposure, "Exposure in stops applied to non-EXR outputs (display formats: before the view transform; .hdr/.tif/.pfm: linear)")
       ->check(CLI::Range(-64.0f, 64.0f))->capture_default_str();
+  cmd->add_option("--view-transform", o.view_transform,
+                  "Display formats (PNG, JPEG, ...): filmic (highlights roll off, through OpenColorIO) or standard "
+                  "(the clipped value, sRGB encoded). The EXR stays scene-linear")
+      ->check(CLI::IsMember(view_transform_names()))->capture_default_str();
+  cmd->add_option("--ocio-config", o.ocio_config,
+                  "Display formats: an OpenColorIO config whose view to use instead (from its scene_linear role)")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--ocio-display", o.ocio_display, "With --ocio-config: the display [default: the config's]");
+  cmd->add_option("--ocio-view", o.ocio_view, "With --ocio-config: the view [default: the display's default view]");
   cmd->add_flag("-q,--quiet", o.quiet, "No progress and no summary (warnings and errors still print)");
   cmd->add_option("--time-limit", o.time_limit,
                   "Stop starting tiles after this many seconds of sampling (the first sample wave always finishes); "

@@ -1,4 +1,5 @@
 #include "renderer/image_output.h"
+#include "renderer/display_transform.h"
 
 
 #include <algorithm>
@@ -200,23 +201,12 @@ void write_oiio(const std::string& path, const FrameImage& img, const ImageWrite
     for (float& v : scaled) v *= scale;
     write_oiio_pixels(path, img.width, img.height, OIIO::TypeDesc::FLOAT, scaled.data());
   } else {
-    const std::vector<std::uint8_t> rgb = to_display_rgb8(img, params.exposure);
+    const std::vector<std::uint8_t> rgb = to_display_rgb8(img.rgb, params.exposure, params.display);
     write_oiio_pixels(path, img.width, img.height, OIIO::TypeDesc::UINT8, rgb.data());
   }
 }
 
 }  // namespace
-
-std::vector<std::uint8_t> to_display_rgb8(const FrameImage& image, float exposure) {
-  const float scale = std::exp2(exposure);
-  std::vector<std::uint8_t> out(image.rgb.size());
-  for (std::size_t i = 0; i < out.size(); ++i) {
-    const float v = glm::clamp(image.rgb[i] * scale, 0.0f, 1.0f);
-    const float s = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
-    out[i] = static_cast<std::uint8_t>(s * 255.0f + 0.5f);
-  }
-  return out;
-}
 
 void enable_exr_threads() {
   static const bool once = [] {

@@ -10,6 +10,7 @@
 
 #include <glm/glm.hpp>
 
+#include "renderer/display_transform.h"
 #include "renderer/film.h"
 
 namespace tessera {
@@ -53,7 +54,8 @@ struct FrameMetadata {
 struct ImageWriteParams {
   bool half = false;  // EXR: 16-bit half floats instead of 32-bit floats
   FrameWindow window;  // EXR: where the image lies in its frame (data and display windows)
-  float exposure = 0.0f;  // display formats: stops applied before sRGB encoding
+  float exposure = 0.0f;  // non-EXR formats: stops applied (before the view of display formats)
+  DisplayParams display;  // display formats (8-bit): the view from scene-linear to the display
   FrameMetadata metadata;  // EXR header
   // EXR: also store the film losslessly with these settings lines, so that --resume can
   // continue it (see renderer/resume_layers.h). Null: a plain frame.
@@ -77,9 +79,6 @@ void write_image(const std::string& path, const FrameImage& image, const ImageWr
 // Writes 8-bit RGB pixels as they are (a chart, a heat map) through OpenImageIO, row-major,
 // top row first, atomically like write_image. Throws OutputError.
 void write_rgb8_image(const std::string& path, int width, int height, const std::vector<std::uint8_t>& rgb);
-
-// sRGB-encoded 8-bit RGB of the frame with `exposure` stops, row-major, top row first.
-std::vector<std::uint8_t> to_display_rgb8(const FrameImage& image, float exposure);
 
 std::string tessera_version();
 

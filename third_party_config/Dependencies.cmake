@@ -31,6 +31,11 @@ add_library(tessera::oiio ALIAS PkgConfig::OIIO)
 pkg_check_modules(CAIRO REQUIRED IMPORTED_TARGET cairo>=1.16 cairo-svg)
 add_library(tessera::cairo ALIAS PkgConfig::CAIRO)
 
+# OpenColorIO (libopencolorio-dev): the preview's view transform, built in or from a
+# studio's config (renderer/display_transform.cpp). Its pkg-config file, like OpenEXR's.
+pkg_check_modules(OCIO REQUIRED IMPORTED_TARGET OpenColorIO>=2.1)
+add_library(tessera::ocio ALIAS PkgConfig::OCIO)
+
 # tinygltf 2.7: glTF 2.0 JSON/GLB parsing (libtinygltf-dev). Debian ships it as a shared
 # library with stb_image and nlohmann-json built in. Target: TinyGLTF::TinyGLTF
 find_package(TinyGLTF REQUIRED)
