@@ -142,7 +142,8 @@ FrameJobResult render_frame_job(const RenderOptions& o, const FrameJob& job) {
 
 Bounds3 animation_bounds(const RenderOptions& o, const GltfDocument& document) {
   Bounds3 bounds;
-  if (!o.camera.empty()) return bounds;  // a camera of the file's: nothing to frame
+  // A camera of the file's, or nothing that plays: nothing to frame (and no conversion made).
+  if (!o.camera.empty() || document.model.animations.empty() || o.animation == "none") return bounds;
   GltfLoadParams params{o.scene, o.variant, o.animation, 0.0f};
   const GltfLoadResult first = convert_gltf(document, params);
   if (first.playing.empty() || !first.scene.cameras.empty()) return bounds;

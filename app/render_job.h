@@ -38,7 +38,8 @@ FrameJobResult render_frame_job(const RenderOptions& options, const FrameJob& jo
 // The bounds of everything placed, over the playing animations' time span (at up to 33
 // evenly spaced times from their first key to their last): what a sequence's automatic
 // camera frames. Empty bounds when no animation plays or the automatic camera is not used
-// (--camera, or the file has cameras): then the 33 conversions are not made.
+// (--camera, or the file has cameras): then the 33 conversions are not made (nor, for a file
+// without animations or with --animation none, even the first).
 Bounds3 animation_bounds(const RenderOptions& options, const GltfDocument& document);
 
 }  // namespace tessera
