@@ -57,7 +57,11 @@ class DracoPrimitive {
     in.Init(reinterpret_cast<const char*>(model_.buffers[bv.buffer].data.data() + bv.byteOffset), bv.byteLength);
     draco::Decoder decoder;
     auto decoded = decoder.DecodeMeshFromBuffer(&in);
-    if (!decoded.ok()) fail(fmt::format("could not be decoded: {}", decoded.status().error_msg_string()));
+    if (!decoded.ok()) {
+      std::string why = decoded.status().error_msg_string();
+      if (!why.empty() && why.back() == '.') why.pop_back();  // Draco's messages end in one
+      fail(fmt::format("could not be decoded: {}", why));
+    }
     mesh_ = std::move(decoded).value();
     if (!mesh_) fail("could not be decoded: the Draco stream holds no mesh");
   }

@@ -19,15 +19,12 @@ bool is_ktx2(const unsigned char* b, int size) {
   return size >= 12 && std::memcmp(b, magic, 12) == 0;
 }
 
-// RGB, or RGBA when the image has alpha: the channels a PNG of the same pixels decodes to.
+// RGBA, as tinygltf decodes PNG and JPEG.
 bool decode_webp(tinygltf::Image* image, const unsigned char* bytes, int size) {
-  WebPBitstreamFeatures features;
-  if (WebPGetFeatures(bytes, static_cast<std::size_t>(size), &features) != VP8_STATUS_OK) return false;
-  const int channels = features.has_alpha ? 4 : 3;
   int w = 0, h = 0;
-  std::uint8_t* pixels = channels == 4 ? WebPDecodeRGBA(bytes, static_cast<std::size_t>(size), &w, &h)
-                                       : WebPDecodeRGB(bytes, static_cast<std::size_t>(size), &w, &h);
+  std::uint8_t* pixels = WebPDecodeRGBA(bytes, static_cast<std::size_t>(size), &w, &h);
   if (!pixels) return false;
+  const int channels = 4;
   image->image.assign(pixels, pixels + static_cast<std::size_t>(w) * h * channels);
   WebPFree(pixels);
   image->width = w;
