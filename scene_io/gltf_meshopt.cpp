@@ -116,15 +116,17 @@ void decode_meshopt_views(tinygltf::Model& model, const std::string& file) {
     if (v.count * v.stride > bv.byteLength)
       throw SceneLoadError(file, fmt::format("{} decodes to {} bytes, but the bufferView has byteLength {}", what,
                                              v.count * v.stride, bv.byteLength));
-    tinygltf::Buffer decoded;
-    decoded.data.assign(bv.byteLength, 0);
+    tinygltf::Buffer decoded;  // sized by what decodes, never by the JSON's byteLength alone
+    decoded.data.assign(v.count * v.stride, 0);
     const int rc = decode(v, model.buffers[v.buffer].data.data() + v.offset, decoded.data);
     if (rc != 0)
       throw SceneLoadError(file, fmt::format("{} could not be decoded: its {} data is corrupt (meshoptimizer error {})",
                                              what, v.mode, rc));
+    const std::size_t decoded_size = decoded.data.size();
     model.buffers.push_back(std::move(decoded));
     bv.buffer = static_cast<int>(model.buffers.size()) - 1;
     bv.byteOffset = 0;
+    bv.byteLength = decoded_size;
   }
 }
 

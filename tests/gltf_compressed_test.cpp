@@ -165,6 +165,17 @@ TEST(GltfMeshopt, QuantizedAccessorsMatchThePlainFile) {
   EXPECT_LE(worst_match(a, b).first, 2e-3f);  // 14-bit positions over a 9-unit extent, 8-bit weights
 }
 
+TEST(GltfMeshopt, QuantizedMorphTargetsAndWeightKeysMatchThePlainFile) {
+  for (float t : {0.0f, 1.0f, 2.5f}) {
+    GltfLoadParams at{};
+    at.time = t;
+    const auto a = world_triangles(load_gltf(compressed("simplemorph_quantized.glb"), at).scene);
+    const auto b = world_triangles(load_gltf(test::scene_path("khronos/SimpleMorph/glTF/SimpleMorph.gltf"), at).scene);
+    ASSERT_EQ(a.size(), b.size());
+    EXPECT_LE(worst_match(a, b).first, 5e-3f) << "at t = " << t;  // 8-bit weight keys, 14-bit positions
+  }
+}
+
 TEST(GltfWebp, LosslessWebpDecodesToThePngTexels) {
   const GltfLoadResult plain = load_gltf(test::scene_path("khronos/BoxTextured/glTF-Binary/BoxTextured.glb"));
   for (const char* name : {"boxtextured_webp.gltf", "boxtextured_webp_only.gltf"}) {

@@ -15,8 +15,8 @@ def out(name):
 
 
 def gltfpack(model, name, *options):
-    src = os.path.join(khronos, model, "glTF-Binary" if model != "MeshPrimitiveModes" else "glTF",
-                       model + (".glb" if model != "MeshPrimitiveModes" else ".gltf"))
+    folder = "glTF" if model in ("MeshPrimitiveModes", "SimpleMorph") else "glTF-Binary"
+    src = os.path.join(khronos, model, folder, model + (".gltf" if folder == "glTF" else ".glb"))
     subprocess.run(["gltfpack", "-i", src, "-o", out(name), *options], check=True, stdout=subprocess.DEVNULL)
 
 
@@ -46,6 +46,7 @@ def meshopt_files():
     gltfpack("BoxAnimated", "boxanimated_meshopt.glb", "-cc")  # OCTAHEDRAL, QUATERNION, EXPONENTIAL, TRIANGLES
     gltfpack("MeshPrimitiveModes", "meshprimitivemodes_meshopt.glb", "-cc")  # INDICES (lines)
     gltfpack("RiggedSimple", "riggedsimple_quantized.glb")  # KHR_mesh_quantization alone
+    gltfpack("SimpleMorph", "simplemorph_quantized.glb")  # quantized morph targets and weight keys
     # A bad header: the first compressed vertex stream's header byte (0xa0: version 0) zeroed.
     j, data = read_glb(out("boxanimated_meshopt.glb"))
     view = next(v for v in j["bufferViews"] if v.get("extensions", {}).get("EXT_meshopt_compression", {}).get("mode") == "ATTRIBUTES")
