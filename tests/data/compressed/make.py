@@ -55,6 +55,15 @@ def meshopt_files():
     assert data[at] == 0xA0
     data[at] = 0
     write_glb(os.path.join(malformed, "meshopt_bad_header.glb"), j, bytes(data))
+    # Properties meshoptimizer would assert on: an ATTRIBUTES stride not a multiple of 4, and a
+    # count far more than the compressed bytes can hold.
+    j, data = read_glb(out("boxanimated_meshopt.glb"))
+    j["bufferViews"][0]["extensions"]["EXT_meshopt_compression"]["byteStride"] = 6
+    write_glb(os.path.join(malformed, "meshopt_bad_stride.glb"), j, data)
+    j, data = read_glb(out("boxanimated_meshopt.glb"))
+    j["bufferViews"][0]["extensions"]["EXT_meshopt_compression"]["count"] = 100000000
+    j["bufferViews"][0]["byteLength"] = 400000000
+    write_glb(os.path.join(malformed, "meshopt_huge_count.glb"), j, data)
 
 
 def texture_files():
