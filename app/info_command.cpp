@@ -24,10 +24,9 @@ namespace {
 
 std::string extension_list(const std::vector<std::string>& names) {
   if (names.empty()) return "none";
-  std::string out;
+  std::string out = std::to_string(names.size());
   for (const std::string& n : names)
-    out += fmt::format("{}{} ({})", out.empty() ? "" : ", ", n,
-                       is_supported_gltf_extension(n) ? "supported" : "not supported");
+    out += fmt::format("\n  {} ({})", n, describe_extension_status(n));  // one per line: statuses are long
   return out;
 }
 
@@ -111,7 +110,7 @@ int run_info(const InfoOptions& o) {
     fmt::print("bounds      ({:.4g}, {:.4g}, {:.4g}) .. ({:.4g}, {:.4g}, {:.4g})\n", s.bounds.lo.x, s.bounds.lo.y,
                s.bounds.lo.z, s.bounds.hi.x, s.bounds.hi.y, s.bounds.hi.z);
   fmt::print("extensions  used: {}\n", extension_list(s.extensions_used));
-  fmt::print("            required: {}\n", extension_list(s.extensions_required));
+  fmt::print("extensions  required: {}\n", extension_list(s.extensions_required));
   return kExitSuccess;
 }
 

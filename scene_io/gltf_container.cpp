@@ -108,4 +108,23 @@ GltfContainer check_gltf_container(const std::vector<std::uint8_t>& bytes,
                                    quoted(bytes.data() + first, std::min<std::size_t>(4, bytes.size() - first))));
 }
 
+namespace {
+void put_le32(std::vector<std::uint8_t>& out, std::size_t at, std::uint32_t v) {
+  for (int i = 0; i < 4; ++i) out[at + i] = static_cast<std::uint8_t>(v >> (8 * i));
+}
+}  // namespace
+
+std::vector<std::uint8_t> replace_glb_json(const std::vector<std::uint8_t>& glb, std::string_view json) {
+  const std::size_t rest = 20 + std::size_t{le32(&glb[12])};  // the BIN chunk, if any
+  const std::size_t padded = (json.size() + 3) / 4 * 4;  // JSON chunks pad with spaces
+  std::vector<std::uint8_t> out(glb.begin(), glb.begin() + 20);  // header; lengths set below
+  out.resize(20 + padded, ' ');
+  std::memcpy(out.data() + 20, json.data(), json.size());
+  out.insert(out.end(), glb.begin() + static_cast<std::ptrdiff_t>(rest), glb.end());
+  put_le32(out, 8, static_cast<std::uint32_t>(out.size()));
+  put_le32(out, 12, static_cast<std::uint32_t>(padded));
+  put_le32(out, 16, kChunkJson);
+  return out;
+}
+
 }  // namespace tessera

@@ -21,4 +21,7 @@ struct GltfContainer {
 GltfContainer check_gltf_container(const std::vector<std::uint8_t>& bytes,
                                    const std::string& display_name);
 
+// The same .glb (checked by check_gltf_container) with its JSON chunk replaced by `json`.
+std::vector<std::uint8_t> replace_glb_json(const std::vector<std::uint8_t>& glb, std::string_view json);
+
 }  // namespace tessera

@@ -25,32 +25,6 @@
 
 namespace tessera {
 
-const std::vector<std::string>& supported_gltf_extensions() {
-  static const std::vector<std::string> names = {
-      "KHR_lights_punctual",
-      "KHR_materials_anisotropy",
-      "KHR_materials_clearcoat",
-      "KHR_materials_diffuse_transmission",
-      "KHR_materials_dispersion",
-      "KHR_materials_emissive_strength",
-      "KHR_materials_ior",
-      "KHR_materials_iridescence",
-      "KHR_materials_sheen",
-      "KHR_materials_specular",
-      "KHR_materials_transmission",
-      "KHR_materials_unlit",
-      "KHR_materials_variants",
-      "KHR_materials_volume",
-      "KHR_mesh_quantization",
-      "KHR_texture_transform"};
-  return names;
-}
-
-bool is_supported_gltf_extension(const std::string& name) {
-  const auto& s = supported_gltf_extensions();
-  return std::find(s.begin(), s.end(), name) != s.end();
-}
-
 namespace {
 
 template <typename Vector>

@@ -8,6 +8,7 @@
 
 #include "renderer/scene/scene.h"
 #include "scene_io/gltf_animation.h"
+#include "scene_io/gltf_extensions.h"
 #include "scene_io/gltf_skin.h"
 
 namespace tessera {
@@ -62,9 +63,5 @@ GltfLoadResult load_gltf_from_memory(const std::vector<std::uint8_t>& bytes,
                                      const std::string& display_name,
                                      const std::string& base_dir,
                                      const GltfLoadParams& params = {});
-
-// Extensions tessera implements; anything else in extensionsRequired is refused.
-const std::vector<std::string>& supported_gltf_extensions();
-bool is_supported_gltf_extension(const std::string& name);
 
 }  // namespace tessera

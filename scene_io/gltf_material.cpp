@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include "scene_io/gltf_images.h"
 #include "scene_io/gltf_material_extensions.h"
 #include "scene_io/load_error.h"
 
@@ -37,14 +38,12 @@ TextureRef texture_ref(const tinygltf::Model& model, const std::string& file, in
     throw SceneLoadError(file, fmt::format("{} refers to texture {}, but the file has {}", what,
                                            index, count_of(model.textures.size(), "texture")));
   const tinygltf::Texture& tex = model.textures[index];
-  if (tex.source < 0) {
+  const int source = texture_image(model, file, index);
+  if (source < 0) {
     warnings.push_back(fmt::format("texture {} has no image tessera can decode; ignored", index));
     return ref;
   }
-  if (tex.source >= static_cast<int>(model.images.size()))
-    throw SceneLoadError(file, fmt::format("texture {} refers to image {}, but the file has {}",
-                                           index, tex.source, count_of(model.images.size(), "image")));
-  ref.image = tex.source;
+  ref.image = source;
   ref.texcoord = texcoord;
   if (tex.sampler >= static_cast<int>(model.samplers.size()))
     throw SceneLoadError(file, fmt::format("texture {} refers to sampler {}, but the file has {}",
@@ -126,6 +125,10 @@ std::vector<Image> convert_images(const tinygltf::Model& model, const std::strin
     const tinygltf::Image& src = model.images[i];
     Image img;
     img.name = src.name.empty() ? src.uri.substr(0, 64) : src.name;
+    if (is_ktx2_image(src)) {  // left empty; texture_image refuses any texture showing it
+      out.push_back(std::move(img));
+      continue;
+    }
     img.width = src.width;
     img.height = src.height;
     img.channels = src.component;

@@ -8,16 +8,15 @@
 
 #include "scene_io/gltf_container.h"
 #include "scene_io/gltf_diagnose.h"
+#include "scene_io/gltf_draco.h"
+#include "scene_io/gltf_images.h"
+#include "scene_io/gltf_meshopt.h"
+#include "scene_io/gltf_prepare.h"
 #include "scene_io/gltf_variants.h"
 #include "scene_io/load_error.h"
 
 namespace tessera {
 namespace {
-
-// What tinygltf's callbacks saw, for the error message after it gives up.
-struct ParseContext {
-  std::string image_error;  // the first image that could not be decoded
-};
 
 bool file_exists(const std::string& path, void*) { return unreadable_reason(path).empty(); }
 
@@ -40,40 +39,23 @@ bool write_whole_file(std::string* err, const std::string&, const std::vector<un
   return false;
 }
 
-std::string image_source(const tinygltf::Image& image) {
-  if (!image.uri.empty()) return image.uri.size() > 60 ? image.uri.substr(0, 57) + "..." : image.uri;
-  if (image.bufferView >= 0) return fmt::format("bufferView {}", image.bufferView);
-  return "data URI";
-}
-
-// tinygltf's own stb_image decoder, with a message that names the image.
-bool load_image(tinygltf::Image* image, const int index, std::string* err, std::string* warn,
-                int width, int height, const unsigned char* bytes, int size, void* user) {
-  std::string ignored;
-  if (tinygltf::LoadImageData(image, index, &ignored, warn, width, height, bytes, size, nullptr))
-    return true;
-  auto& ctx = *static_cast<ParseContext*>(user);
-  if (ctx.image_error.empty())
-    ctx.image_error = fmt::format("image {} ({}) could not be decoded: it is not a PNG or JPEG image",
-                                  index, image_source(*image));
-  if (err) *err += ctx.image_error + "\n";
-  return false;
-}
-
 // tinygltf only warns about an external image it cannot open; tessera refuses the file.
-void check_external_images(const tinygltf::Model& model, const std::string& name,
+void check_external_images(tinygltf::Model& model, const std::string& name,
                            const std::string& base_dir) {
   for (std::size_t i = 0; i < model.images.size(); ++i) {
-    const tinygltf::Image& image = model.images[i];
-    if (!image.image.empty() || image.uri.empty() || image.bufferView >= 0) continue;
+    tinygltf::Image& image = model.images[i];
+    if (image.image.empty() && decode_webp_data_uri(image)) continue;
+    if (image.uri.rfind("data:image/webp;", 0) == 0)
+      throw SceneLoadError(name, fmt::format("image {} (data URI) could not be decoded: it is not a valid WebP image", i));
+    if (!image.image.empty() || image.uri.empty() || image.bufferView >= 0 || is_ktx2_image(image)) continue;
     if (image.uri.rfind("data:", 0) == 0)  // a media type tinygltf does not decode
       throw SceneLoadError(name, fmt::format("image {} has a data URI of media type '{}'; tessera "
-                                             "reads PNG and JPEG images",
+                                             "reads PNG, JPEG and WebP images",
                                              i, image.uri.substr(5, image.uri.find_first_of(";,") - 5)));
     std::string why = unreadable_reason(resolve_gltf_uri(base_dir, image.uri));
     if (why.empty()) why = "it is empty";
     throw SceneLoadError(name, fmt::format("image {} refers to {}, which cannot be opened: {}", i,
-                                           image_source(image), why));
+                                           gltf_image_source(image), why));
   }
 }
 
@@ -81,13 +63,22 @@ void check_external_images(const tinygltf::Model& model, const std::string& name
 
 tinygltf::Model parse_gltf(const std::vector<std::uint8_t>& bytes, const std::string& name,
                            const std::string& base_dir) {
-  const GltfContainer container = check_gltf_container(bytes, name);
+  GltfContainer container = check_gltf_container(bytes, name);
   if (bytes.size() > std::numeric_limits<unsigned>::max())
     throw SceneLoadError(name, "is larger than 4 GiB, more than tinygltf can read");
-  ParseContext ctx;
+  // Compressed files: tinygltf reads a rewritten JSON (gltf_prepare.h), in a rebuilt .glb.
+  const std::optional<std::string> prepared = prepare_gltf_json(container.json, name);
+  std::vector<std::uint8_t> rebuilt;
+  if (prepared) {
+    rebuilt = container.binary ? replace_glb_json(bytes, *prepared)
+                               : std::vector<std::uint8_t>(prepared->begin(), prepared->end());
+    container = check_gltf_container(rebuilt, name);
+  }
+  const std::vector<std::uint8_t>& input = prepared ? rebuilt : bytes;
+  ImageLoadContext ctx;
   tinygltf::TinyGLTF parser;
   parser.SetFsCallbacks({&file_exists, &expand_file_path, &read_whole_file, &write_whole_file, &ctx});
-  parser.SetImageLoader(&load_image, &ctx);
+  parser.SetImageLoader(&load_gltf_image, &ctx);
   // tinygltf's own reading of extension objects drops empty arrays and objects and cuts
   // integers to int, so KHR_materials_variants (scene_io/gltf_variants.cpp) reads the JSON
   // text of each `extensions` object instead, which tinygltf keeps only when asked to.
@@ -95,14 +86,14 @@ tinygltf::Model parse_gltf(const std::vector<std::uint8_t>& bytes, const std::st
     parser.SetStoreOriginalJSONForExtrasAndExtensions(true);
   tinygltf::Model model;
   std::string err, warn;
-  const auto size = static_cast<unsigned>(bytes.size());
+  const auto size = static_cast<unsigned>(input.size());
   const bool ok =
       container.binary
-          ? parser.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), size, base_dir)
+          ? parser.LoadBinaryFromMemory(&model, &err, &warn, input.data(), size, base_dir)
           : parser.LoadASCIIFromString(&model, &err, &warn,
-                                       reinterpret_cast<const char*>(bytes.data()), size, base_dir);
+                                       reinterpret_cast<const char*>(input.data()), size, base_dir);
   if (!ok) {
-    if (!ctx.image_error.empty()) throw SceneLoadError(name, ctx.image_error);
+    if (!ctx.error.empty()) throw SceneLoadError(name, ctx.error);
     if (err.rfind("[json.exception.", 0) != 0)
       if (auto problem = diagnose_gltf_json({container.json, container.binary,
                                              container.bin_chunk_size, base_dir}))
@@ -113,6 +104,8 @@ tinygltf::Model parse_gltf(const std::vector<std::uint8_t>& bytes, const std::st
     throw SceneLoadError(name, fmt::format("is glTF version '{}'; tessera reads version 2.x",
                                            model.asset.version));
   check_external_images(model, name, base_dir);
+  decode_meshopt_views(model, name);  // first: a Draco stream may sit in a meshopt view
+  decode_draco_primitives(model, name);
   return model;
 }
 

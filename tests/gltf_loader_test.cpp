@@ -90,6 +90,7 @@ const Sample kSamples[] = {
     {"Cameras/glTF/Cameras.gltf", 2, 2, 1, 1, 2, {0, 0, -0.7075903}, {1, 0.7066229, 0}},
     // Skinned: posed at time 0 by their animations, the bounds those of the skinned vertices.
     {"CesiumMan/glTF-Binary/CesiumMan.glb", 4672, 4672, 1, 1, 0, {-0.3105088, -0.01064529, -0.4465939}, {0.1946552, 1.44716, 0.4498944}},
+    {"CesiumMan/glTF-Draco/CesiumMan.gltf", 4672, 4672, 1, 1, 0, {-0.310571, -0.01064654, -0.4465938}, {0.1945348, 1.446842, 0.4500758}},
     {"ClearCoatTest/glTF-Binary/ClearCoatTest.glb", 37116, 37116, 27, 27, 0, {-7.357803, -6.25, -0.06000001}, {3.1, 6.854517, 1.05}},
     {"CornellBox/glTF/cornellBox.gltf", 16720, 16732, 9, 10, 1, {-5.05, -5.05, -5.05}, {5.05, 5.05, 5}},
     {"DamagedHelmet/glTF-Binary/DamagedHelmet.glb", 15452, 15452, 1, 1, 0, {-0.9474586, -0.9009739, -1.187155}, {0.9424954, 0.900995, 0.8128451}},
@@ -103,6 +104,7 @@ const Sample kSamples[] = {
     {"NegativeScaleTest/glTF-Binary/NegativeScaleTest.glb", 3884, 7724, 8, 11, 0, {-5.161674, -4.45354, -0.5}, {5.161674, 4.45354, 0.5}},
     {"OrientationTest/glTF-Binary/OrientationTest.glb", 524, 524, 13, 13, 0, {-5.330651, -5.330651, -5.330651}, {5.330651, 5.330651, 5.330651}},
     {"RiggedSimple/glTF-Binary/RiggedSimple.glb", 188, 188, 1, 1, 0, {-1, -4.575077, -1}, {1, 4.575078, 0.9999996}},
+    {"RiggedSimple/glTF-Draco/RiggedSimple.gltf", 188, 188, 1, 1, 0, {-1, -4.575077, -0.9981044}, {0.998104, 4.575078, 0.9999996}},
     {"SimpleMorph/glTF/SimpleMorph.gltf", 1, 1, 1, 1, 0, {0, 0, 0}, {1, 0.5, 0}},  // weights 0, 0 at time 0
     {"SimpleSkin/glTF/SimpleSkin.gltf", 8, 8, 1, 1, 0, {-0.5, 0, 0}, {0.5, 2, 0}},  // bind pose at time 0
     {"SimpleSparseAccessor/glTF/SimpleSparseAccessor.gltf", 12, 12, 1, 1, 0, {0, 0, 0}, {6, 4, 0}},
@@ -130,8 +132,9 @@ TEST_P(GltfLoaderSamples, CountsBoundsAndCameras) {
 
 INSTANTIATE_TEST_SUITE_P(Khronos, GltfLoaderSamples, testing::ValuesIn(kSamples),
                          [](const testing::TestParamInfo<Sample>& info) {
-                           const std::string f = info.param.file;
-                           return f.substr(0, f.find('/'));
+                           const std::string f = info.param.file;  // CesiumMan, CesiumMan_Draco
+                           const bool draco = f.find("/glTF-Draco/") != std::string::npos;
+                           return f.substr(0, f.find('/')) + (draco ? "_Draco" : "");
                          });
 
 // The table above against the README it was taken from: every model listed, with the

@@ -40,6 +40,19 @@ add_library(tessera::ocio ALIAS PkgConfig::OCIO)
 # library with stb_image and nlohmann-json built in. Target: TinyGLTF::TinyGLTF
 find_package(TinyGLTF REQUIRED)
 
+# Draco 1.5: decodes KHR_draco_mesh_compression primitives (libdraco-dev; scene_io/gltf_draco.cpp).
+# Target: draco::draco
+find_package(draco REQUIRED CONFIG)
+
+# meshoptimizer 0.18: decodes EXT_meshopt_compression buffer views and their filters
+# (libmeshoptimizer-dev; scene_io/gltf_meshopt.cpp). Target: meshoptimizer::meshoptimizer
+find_package(meshoptimizer REQUIRED CONFIG)
+
+# libwebp 1.2: decodes EXT_texture_webp images (libwebp-dev; scene_io/gltf_images.cpp). It ships
+# no CMake config, so pkg-config. Target: tessera::webp
+pkg_check_modules(WEBP REQUIRED IMPORTED_TARGET libwebp)
+add_library(tessera::webp ALIAS PkgConfig::WEBP)
+
 # glm: vector and matrix math (libglm-dev), header only. Target: glm::glm
 find_package(glm REQUIRED)
 

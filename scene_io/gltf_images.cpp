@@ -1,0 +1,99 @@
+#include "scene_io/gltf_images.h"
+
+#include <cstring>
+
+#include <fmt/format.h>
+#include <webp/decode.h>
+
+#include "scene_io/load_error.h"
+
+namespace tessera {
+namespace {
+
+bool is_webp(const unsigned char* b, int size) {
+  return size >= 12 && std::memcmp(b, "RIFF", 4) == 0 && std::memcmp(b + 8, "WEBP", 4) == 0;
+}
+
+bool is_ktx2(const unsigned char* b, int size) {
+  static const unsigned char magic[12] = {0xAB, 'K', 'T', 'X', ' ', '2', '0', 0xBB, '\r', '\n', 0x1A, '\n'};
+  return size >= 12 && std::memcmp(b, magic, 12) == 0;
+}
+
+// RGBA, as tinygltf decodes PNG and JPEG.
+bool decode_webp(tinygltf::Image* image, const unsigned char* bytes, int size) {
+  int w = 0, h = 0;
+  std::uint8_t* pixels = WebPDecodeRGBA(bytes, static_cast<std::size_t>(size), &w, &h);
+  if (!pixels) return false;
+  const int channels = 4;
+  image->image.assign(pixels, pixels + static_cast<std::size_t>(w) * h * channels);
+  WebPFree(pixels);
+  image->width = w;
+  image->height = h;
+  image->component = channels;
+  image->bits = 8;
+  image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+  return true;
+}
+
+int extension_source(const tinygltf::Texture& tex, const char* name) {
+  auto it = tex.extensions.find(name);
+  if (it == tex.extensions.end() || !it->second.Has("source") || !it->second.Get("source").IsNumber()) return -1;
+  return it->second.Get("source").GetNumberAsInt();
+}
+
+}  // namespace
+
+bool load_gltf_image(tinygltf::Image* image, const int index, std::string* err, std::string* warn, int width,
+                     int height, const unsigned char* bytes, int size, void* user) {
+  if (is_ktx2(bytes, size)) {  // no decoder: textures use their fallback (texture_image)
+    image->mimeType = "image/ktx2";
+    return true;
+  }
+  std::string ignored;
+  if (is_webp(bytes, size) ? decode_webp(image, bytes, size)
+                           : tinygltf::LoadImageData(image, index, &ignored, warn, width, height, bytes, size, nullptr))
+    return true;
+  auto& ctx = *static_cast<ImageLoadContext*>(user);
+  if (ctx.error.empty())
+    ctx.error = fmt::format("image {} ({}) could not be decoded: it is not a PNG, JPEG or WebP image", index,
+                            gltf_image_source(*image));
+  if (err) *err += ctx.error + "\n";
+  return false;
+}
+
+std::string gltf_image_source(const tinygltf::Image& image) {
+  if (!image.uri.empty()) return image.uri.size() > 60 ? image.uri.substr(0, 57) + "..." : image.uri;
+  if (image.bufferView >= 0) return fmt::format("bufferView {}", image.bufferView);
+  return "data URI";
+}
+
+bool decode_webp_data_uri(tinygltf::Image& image) {
+  static const std::string prefix = "data:image/webp;base64,";
+  if (image.uri.rfind(prefix, 0) != 0) return false;
+  // tinygltf decodes base64 data URIs only of the media types it knows.
+  std::vector<unsigned char> bytes;
+  std::string mime;
+  const std::string known = "data:application/octet-stream;base64," + image.uri.substr(prefix.size());
+  if (!tinygltf::DecodeDataURI(&bytes, mime, known, 0, false) || bytes.size() > INT32_MAX) return false;
+  return is_webp(bytes.data(), static_cast<int>(bytes.size())) &&
+         decode_webp(&image, bytes.data(), static_cast<int>(bytes.size()));
+}
+
+bool is_ktx2_image(const tinygltf::Image& image) { return image.image.empty() && image.mimeType == "image/ktx2"; }
+
+int texture_image(const tinygltf::Model& model, const std::string& file, int index) {
+  const tinygltf::Texture& tex = model.textures[index];
+  int source = extension_source(tex, "EXT_texture_webp");
+  if (source < 0) source = tex.source;
+  if (source >= static_cast<int>(model.images.size()))
+    throw SceneLoadError(file, fmt::format("texture {} refers to image {}, but the file has {}", index, source,
+                                           count_of(model.images.size(), "image")));
+  const bool basisu = tex.extensions.count("KHR_texture_basisu") > 0;
+  if ((source < 0 && basisu) || (source >= 0 && is_ktx2_image(model.images[source])))
+    throw SceneLoadError(file, fmt::format("texture {} has only a KTX2 image (KHR_texture_basisu), which tessera "
+                                           "cannot decode; it needs a PNG, JPEG or WebP fallback source",
+                                           index));
+  return source;
+}
+
+}  // namespace tessera

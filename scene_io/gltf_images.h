@@ -1,0 +1,37 @@
+// glTF images and which one a texture shows: PNG and JPEG (tinygltf's stb_image), WebP
+// (EXT_texture_webp, libwebp), and KTX2 (KHR_texture_basisu), which Debian has no decoder
+// for: its image is left empty and the texture's fallback source is used instead.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <tiny_gltf.h>
+
+namespace tessera {
+
+// What the image callback saw, for the error message after tinygltf gives up.
+struct ImageLoadContext {
+  std::string error;  // the first image that could not be decoded
+};
+
+// tinygltf's LoadImageDataFunction; `user` is an ImageLoadContext.
+bool load_gltf_image(tinygltf::Image* image, int index, std::string* err, std::string* warn, int width, int height,
+                     const unsigned char* bytes, int size, void* user);
+
+// "textures/a.png", "bufferView 3" or "data URI": where an image's bytes are, for messages.
+std::string gltf_image_source(const tinygltf::Image& image);
+
+// Decodes a base64 data URI of media type image/webp (which tinygltf leaves undecoded) into
+// `image`. False when the URI is not one or does not hold a WebP image.
+bool decode_webp_data_uri(tinygltf::Image& image);
+
+// True for a KTX2 image, which load_gltf_image leaves undecoded.
+bool is_ktx2_image(const tinygltf::Image& image);
+
+// The image texture `index` shows: EXT_texture_webp's source, else `source` (for
+// KHR_texture_basisu, its fallback). -1 when it has none. Throws SceneLoadError for a
+// texture that has only a KTX2 image.
+int texture_image(const tinygltf::Model& model, const std::string& file, int index);
+
+}  // namespace tessera
