@@ -8,6 +8,8 @@
 
 namespace tessera {
 
+class RankGroup;
+
 struct RenderOptions {
   std::string scene_path;
   std::string output;  // default: <scene name>.exr
@@ -33,6 +35,7 @@ struct RenderOptions {
   bool skip_existing = false;
   std::string shutter;  // --shutter OPEN,CLOSE in frames; empty: no motion blur
   std::string crop;  // --crop X0,X1,Y0,Y1 (fractions of the frame); empty: the whole frame
+  std::string rank_scheduler = "dynamic";  // under MPI: dynamic (a shared counter) or static
   std::string view_transform = "filmic";  // display formats: the built-in view
   std::string ocio_config, ocio_display, ocio_view;  // a studio's OCIO config and its view
   int motion_steps = 3;
@@ -96,7 +99,8 @@ void add_bench_command(CLI::App& app, BenchOptions& options);
 void add_scaling_command(CLI::App& app, ScalingOptions& options);
 void add_denoise_command(CLI::App& app, DenoiseOptions& options);
 
-int run_render(const RenderOptions& options);
+// `ranks`: the MPI ranks rendering together (null: this process alone).
+int run_render(const RenderOptions& options, RankGroup* ranks = nullptr);
 int run_info(const InfoOptions& options);
 int run_bench(const BenchOptions& options);
 int run_scaling(const ScalingOptions& options);

@@ -1,6 +1,8 @@
 // tessera: a path tracer for glTF 2.0 scenes. Exit codes: see app/exit_codes.h.
 #include <cstdio>
 #include <exception>
+#include <memory>
+#include <string>
 #include <new>
 
 #include <fmt/format.h>
@@ -10,6 +12,7 @@
 #include "app/interrupt.h"
 #include "renderer/image_input.h"
 #include "renderer/image_output.h"
+#include "renderer/mpi_ranks.h"
 #include "renderer/resume_layers.h"
 #include "scene_io/load_error.h"
 
@@ -46,35 +49,46 @@ int main(int argc, char** argv) {
     fmt::print(stderr, "tessera: error: {}\nRun 'tessera --help' or 'tessera COMMAND --help' for usage.\n", e.what());
     return kExitBadInput;
   }
+  // Under an MPI launcher every rank runs this; a rank that fails ends them all, so that none
+  // waits forever for it, and says which rank it was.
+  std::unique_ptr<MpiSession> mpi;
+  std::unique_ptr<RankGroup> ranks;
+  std::string who;
+  auto fail = [&](int code, const std::string& message) {
+    fmt::print(stderr, "tessera: {}error: {}\n", who, message);
+    if (mpi && mpi->size() > 1) MpiSession::abort_all(code);
+    return code;
+  };
   try {
-    if (app.got_subcommand("render")) return run_render(render);
+    if (launched_by_mpi()) {
+      mpi = std::make_unique<MpiSession>(argc, argv);
+      if (mpi->rank() > 0) who = fmt::format("rank {}: ", mpi->rank());
+    }
+    if (app.got_subcommand("render")) {
+      if (mpi) ranks = mpi->ranks();
+      const int code = run_render(render, ranks.get());
+      ranks.reset();  // its window is freed collectively, before MPI_Finalize
+      return code;
+    }
     if (app.got_subcommand("info")) return run_info(info);
     if (app.got_subcommand("scaling")) return run_scaling(scaling);
     if (app.got_subcommand("denoise")) return run_denoise(denoise);
     return run_bench(bench);
   } catch (const SceneLoadError& e) {
-    fmt::print(stderr, "tessera: error: {}\n", e.what());
-    return kExitBadInput;
+    return fail(kExitBadInput, e.what());
   } catch (const OutputPathError& e) {  // checked before rendering
-    fmt::print(stderr, "tessera: error: {}\n", e.what());
-    return kExitBadInput;
+    return fail(kExitBadInput, e.what());
   } catch (const ResumeError& e) {  // --resume: not resumable, damaged
-    fmt::print(stderr, "tessera: error: {}\n", e.what());
-    return kExitBadInput;
+    return fail(kExitBadInput, e.what());
   } catch (const ImageInputError& e) {  // denoise: an unreadable EXR
-    fmt::print(stderr, "tessera: error: {}\n", e.what());
-    return kExitBadInput;
+    return fail(kExitBadInput, e.what());
   } catch (const UsageError& e) {
-    fmt::print(stderr, "tessera: error: {}\n", e.what());
-    return kExitBadInput;
+    return fail(kExitBadInput, e.what());
   } catch (const std::invalid_argument& e) {  // unreadable environment map and the like
-    fmt::print(stderr, "tessera: error: {}\n", e.what());
-    return kExitBadInput;
+    return fail(kExitBadInput, e.what());
   } catch (const std::bad_alloc&) {
-    fmt::print(stderr, "tessera: error: out of memory\n");
-    return kExitFailure;
+    return fail(kExitFailure, "out of memory");
   } catch (const std::exception& e) {
-    fmt::print(stderr, "tessera: error: {}\n", e.what());
-    return kExitFailure;
+    return fail(kExitFailure, e.what());
   }
 }

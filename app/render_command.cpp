@@ -96,6 +96,11 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
                   "Render only this region of the frame, X0,X1,Y0,Y1 as fractions of its width and height "
                   "(as pbrt's --cropwindow; 0,0.5,0,1 is the left half): pixels ceil(X0 W) to ceil(X1 W) - 1, "
                   "the same values as in the whole frame; the EXR keeps the frame as its display window");
+  cmd->add_option("--rank-scheduler", o.rank_scheduler,
+                  "Under mpirun: how each wave's tiles are shared by the ranks: dynamic (batches from one counter, "
+                  "as the tiles are finished) or static (one block per rank, the paper's chunks)")
+      ->check(CLI::IsMember({"dynamic", "static"}))
+      ->capture_default_str();
   cmd->add_option("--aperture", o.aperture, "Thin-lens aperture diameter in scene units (0: pinhole)")
       ->check(CLI::Range(0.0f, 1e6f))->capture_default_str();
   cmd->add_option("--focus-distance", o.focus_distance,
@@ -202,7 +207,9 @@ std::vector<PlannedFrame> plan_frames(const RenderOptions& o) {
 
 }  // namespace
 
-int run_render(const RenderOptions& o) {
+int run_render(const RenderOptions& options, RankGroup* ranks) {
+  RenderOptions o = options;
+  o.quiet = o.quiet || (ranks && ranks->rank() > 0);  // rank 0 speaks for the ranks
   if (!o.frames.empty() && !o.resume.empty())
     throw UsageError("--resume: continues one frame; a sequence continues its interrupted frame with --skip-existing");
   std::vector<PlannedFrame> frames = plan_frames(o);
@@ -225,7 +232,7 @@ int run_render(const RenderOptions& o) {
     }
     const bool first = rendered == 0;
     const FrameJobResult done =
-        render_frame_job(f.options, {&document, framing.empty() ? nullptr : &framing, f.label, first, &scene_cache});
+        render_frame_job(f.options, {&document, framing.empty() ? nullptr : &framing, f.label, first, &scene_cache, ranks});
     ++rendered;
     if (done.interrupted) return kExitInterrupted;
   }

@@ -42,9 +42,10 @@ void print_summary(const RenderOptions& o, const std::string& output, const Rend
   const RenderStats& s = result.stats;
   const int spp = result.image.samples_per_pixel;
   fmt::print(stderr,
-             "tessera: {}x{}, {} spp, {} threads, tile {}: {:.3f} M samples/s, {:.3f} M rays/s; {} {}: "
+             "tessera: {}x{}, {} spp, {}{} threads, tile {}: {:.3f} M samples/s, {:.3f} M rays/s; {} {}: "
              "efficiency {:.1f}%, imbalance {:.2f}{}\n",
-             settings.width, settings.height, spp, s.threads, settings.tile_size, s.camera_samples / s.seconds * 1e-6,
+             settings.width, settings.height, spp, s.ranks > 1 ? fmt::format("{} ranks x ", s.ranks) : "", s.threads,
+             settings.tile_size, s.camera_samples / s.seconds * 1e-6,
              s.rays / s.seconds * 1e-6, scheduler_name(settings.scheduler), tile_order_name(settings.tile_order),
              100.0 * s.efficiency, s.imbalance,
              s.dropped_samples ? fmt::format(", {} non-finite samples dropped", s.dropped_samples) : "");
@@ -70,11 +71,15 @@ std::string check_frame_files(const RenderOptions& o) {
   return resumed_settings;
 }
 
-FrameJobResult render_frame_job(const RenderOptions& o, const FrameJob& job) {
+FrameJobResult render_frame_job(const RenderOptions& options, const FrameJob& job) {
+  // Of the ranks of a distributed render, rank 0 alone speaks and writes.
+  const bool leader = !job.ranks || job.ranks->rank() == 0;
+  RenderOptions o = options;
+  o.quiet = o.quiet || !leader;
   const std::string resumed_settings = check_frame_files(o);
   const ProfileOutputs profile_outputs{o.stats_json, o.trace, o.heatmap};
 
-  LoadedScene loaded = load_scene(o, *job.document, job.print_warnings);
+  LoadedScene loaded = load_scene(o, *job.document, job.print_warnings && leader);
   FramePlan plan = plan_frame(o, loaded.gltf, job.framing);
   const double load_seconds = loaded.seconds;
   const std::uint64_t triangles = loaded.triangles;
@@ -89,7 +94,9 @@ FrameJobResult render_frame_job(const RenderOptions& o, const FrameJob& job) {
     const int min_spp = settings.adaptive.on() ? adaptive_min_spp(settings.adaptive, settings.spp) : 0;
     resumed = read_resume_film(o.resume, {settings.width, settings.height, settings.aovs, settings.spp, min_spp, settings.window});
   }
-  if (o.checkpoint > 0.0) {
+  settings.ranks = job.ranks;
+  settings.rank_scheduler = o.rank_scheduler == "static" ? RankScheduler::stat : RankScheduler::dynamic;
+  if (o.checkpoint > 0.0 && leader) {
     settings.checkpoint_interval = o.checkpoint;
     // A checkpoint that cannot be written (disk full) does not stop the render: the frame
     // is still in memory, and the final write reports the error if it persists.
@@ -117,6 +124,7 @@ FrameJobResult render_frame_job(const RenderOptions& o, const FrameJob& job) {
                                        settings.adaptive.on()});
     result = render_frame(*built.scene, built.camera, settings, &monitor, o.resume.empty() ? nullptr : &resumed);
   }
+  if (!leader) return {interrupts.interrupted()};
   if (plan.cost_layer) result.image.cost = tile_cost_image(result.profile);
   write_profile_outputs(profile_outputs, result,
                         fmt::format("{}: {}, {}, {} threads", std::filesystem::path(o.scene_path).filename().string(),

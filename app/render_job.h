@@ -21,6 +21,9 @@ struct FrameJob {
   bool print_warnings = true;  // the file's warnings: once per sequence
   // The scene of the sequence's previous frame, updated for this one (null: built for it alone).
   SceneCache* scene_cache = nullptr;
+  // The MPI ranks rendering the frame together (null: this process alone). Rank 0 shows the
+  // progress, writes the outputs and checkpoints and prints the summary; the others render.
+  RankGroup* ranks = nullptr;
 };
 
 struct FrameJobResult {

@@ -2,9 +2,11 @@
 
 #include <chrono>
 #include <stdexcept>
+#include <tuple>
 
 #include <tbb/info.h>
 
+#include "renderer/film_exchange.h"
 #include "renderer/integrator/path_tracer.h"
 #include "renderer/schedulers.h"
 
@@ -115,6 +117,33 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
+// One wave across the ranks: this rank runs the items it takes (batches from the shared
+// counter, or its block), then every rank copies in the pixels the others rendered.
+void run_wave_across_ranks(RankGroup& ranks, RankScheduler scheduler, const WorkPlan& plan, WaveRunner& runner,
+                           const ItemBody& body, Film& film) {
+  const std::size_t n = plan.items.size();
+  std::vector<std::size_t> taken;
+  auto take = [&](std::size_t begin, std::size_t end) {
+    runner.run_range(begin, end, body);
+    for (std::size_t i = begin; i < end; ++i) taken.push_back(i);
+  };
+  if (scheduler == RankScheduler::stat) {
+    take(n * ranks.rank() / ranks.size(), n * (ranks.rank() + 1) / ranks.size());
+  } else {
+    // Batches of about a quarter of a rank's fair share of threads' work: few requests, and
+    // the last ones small enough to even out the ranks' finishing times.
+    const std::size_t batch = std::max<std::size_t>(1, n / (4 * ranks.size() * plan.params.threads));
+    ranks.start_wave(n);
+    for (auto [begin, end] = ranks.next_items(batch); begin < end; std::tie(begin, end) = ranks.next_items(batch))
+      take(begin, end);
+  }
+  std::vector<Tile> rects;
+  for (const WorkItem& item : plan.items) rects.push_back(item.rect);
+  const std::vector<std::vector<char>> all = ranks.all_gather(pack_tiles(film.state(), rects, taken));
+  for (int r = 0; r < ranks.size(); ++r)
+    if (r != ranks.rank()) unpack_tiles(film.mutable_state(), rects, all[r]);
+}
+
 }  // namespace
 
 std::vector<SampleWave> sample_waves_of(const RenderSettings& settings) {
@@ -141,6 +170,7 @@ RenderResult render_frame(const RenderScene& scene, const RenderCamera& camera,
   std::atomic<bool> out_of_time{false};
   RenderStats stats;
   stats.threads = threads;
+  stats.ranks = settings.ranks ? settings.ranks->size() : 1;
   stats.resumed_samples = resumed;
 
   const auto start = std::chrono::steady_clock::now();
@@ -153,13 +183,18 @@ RenderResult render_frame(const RenderScene& scene, const RenderCamera& camera,
       out_of_time.store(true, std::memory_order_relaxed);
     return out_of_time.load(std::memory_order_relaxed);
   };
+  // Between waves the ranks decide together, so that they run the same waves.
+  auto all_stopped = [&] { return settings.ranks ? settings.ranks->any(stopped()) : stopped(); };
+  // A distributed render: every rank's samples and dropped samples, summed after each wave.
+  std::uint64_t cluster_samples = 0, cluster_dropped = film.state().dropped;
   const PixelFilter filter(settings.filter);
   WaveRunner runner(plan);
   for (std::size_t w = 0; w < waves.size(); ++w) {
     if (wave_already_done(film, waves[w], min_spp)) continue;  // resumed past it
-    if (stopped()) break;
+    if (all_stopped()) break;
     recorder.begin_wave(waves_run++, waves[w].begin, waves[w].end);
-    runner.run([&](std::size_t i, int thread) {
+    const std::uint64_t samples_before = samples, dropped_before = dropped;
+    const ItemBody body = [&](std::size_t i, int thread) {
       if (stopped()) return;
       TileRecord run;
       run.start = recorder.now();
@@ -175,11 +210,19 @@ RenderResult render_frame(const RenderScene& scene, const RenderCamera& camera,
       dropped += c.path.dropped;
       mon.samples_done += c.samples;
       mon.rays += c.path.rays;
-    });
+    };
+    if (settings.ranks) {
+      run_wave_across_ranks(*settings.ranks, settings.rank_scheduler, plan, runner, body, film);
+      cluster_samples += settings.ranks->sum(samples - samples_before);
+      cluster_dropped += settings.ranks->sum(dropped - dropped_before);
+      mon.samples_done = cluster_samples;
+    } else {
+      runner.run(body);
+    }
     recorder.end_wave();
     first_wave = false;
     // Only after a whole wave (a stopped one skipped tiles), and not after the last.
-    if (settings.adaptive.on() && waves[w].end >= min_spp && w + 1 < waves.size() && !stopped()) {
+    if (settings.adaptive.on() && waves[w].end >= min_spp && w + 1 < waves.size() && !all_stopped()) {
       mon.pixels_converged = check_convergence(
           film.mutable_state(), {settings.adaptive.threshold, static_cast<std::uint32_t>(min_spp),
                                  static_cast<std::uint32_t>(waves[w].end)});
@@ -188,20 +231,20 @@ RenderResult render_frame(const RenderScene& scene, const RenderCamera& camera,
     const bool last = w + 1 == waves.size() || film.samples_left(settings.spp) == 0;
     if (settings.on_checkpoint && !last && !stopped() &&
         seconds_since(last_checkpoint) >= settings.checkpoint_interval) {
-      film.set_dropped(dropped);
-      stats.camera_samples = samples;
-      stats.dropped_samples = dropped;
+      film.set_dropped(settings.ranks ? cluster_dropped : dropped.load());
+      stats.camera_samples = settings.ranks ? cluster_samples : samples.load();
+      stats.dropped_samples = film.state().dropped;
       stats.seconds = seconds_since(start);
       settings.on_checkpoint(film, stats);
       last_checkpoint = std::chrono::steady_clock::now();
     }
     if (last) break;
   }
-  film.set_dropped(dropped);
+  film.set_dropped(settings.ranks ? cluster_dropped : dropped.load());
   stats.seconds = seconds_since(start);
-  stats.camera_samples = samples;
-  stats.rays = mon.rays;
-  stats.dropped_samples = dropped;
+  stats.camera_samples = settings.ranks ? cluster_samples : samples.load();
+  stats.rays = settings.ranks ? settings.ranks->sum(mon.rays) : mon.rays.load();
+  stats.dropped_samples = film.state().dropped;
   stats.cancelled = mon.cancel;
   stats.time_limited = out_of_time && film.samples_left(settings.spp) > 0;
   stats.converged_pixels = film.converged_pixels();

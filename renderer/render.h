@@ -10,6 +10,7 @@
 #include "renderer/adaptive_sampling.h"
 #include "renderer/camera.h"
 #include "renderer/film.h"
+#include "renderer/rank_group.h"
 #include "renderer/pixel_filter.h"
 #include "renderer/integrator/path_tracer.h"
 #include "renderer/render_scene.h"
@@ -45,6 +46,11 @@ struct RenderSettings {
   LightSampling light_sampling = LightSampling::Mis;
   float clamp = 0.0f;  // > 0: clamp each sample's luminance (biased, off by default)
   AdaptiveSampling adaptive;  // off by default: every pixel gets spp
+  // A distributed render: the ranks share each wave's tiles (a global counter, or a block
+  // each) and exchange what they rendered after it, so every rank ends each wave with the
+  // film one process would have. Null: this process renders everything.
+  RankGroup* ranks = nullptr;
+  RankScheduler rank_scheduler = RankScheduler::dynamic;
 };
 
 // Live counters a progress display may poll while rendering, and a way to stop early
@@ -64,6 +70,7 @@ struct RenderStats {
   double seconds = 0.0;
   std::uint64_t camera_samples = 0, rays = 0;  // of this run
   std::uint64_t dropped_samples = 0;  // non-finite samples left out, resumed runs included
+  int ranks = 1;  // processes that rendered the frame together (MPI)
   int threads = 0;
   bool cancelled = false;  // the monitor's cancel flag stopped it
   bool time_limited = false;  // the time limit stopped it before spp

@@ -134,6 +134,13 @@ WaveRunner::WaveRunner(const WorkPlan& plan) : plan_(plan) {
   if (plan.params.scheduler == SchedulerKind::tiles) arena_ = std::make_unique<Arena>(plan.params.threads);
 }
 
+void WaveRunner::run_range(std::size_t begin, std::size_t end, const ItemBody& body) {
+  if (!arena_) arena_ = std::make_unique<Arena>(plan_.params.threads);
+  arena_->arena.execute([&] {
+    run_tiles_dynamic(end - begin, [&](std::size_t i) { body(begin + i, tbb::this_task_arena::current_thread_index()); });
+  });
+}
+
 WaveRunner::~WaveRunner() = default;
 
 void WaveRunner::run(const ItemBody& body) {

@@ -68,6 +68,9 @@ class WaveRunner {
 
   // Returns when every item has run once.
   void run(const ItemBody& body);
+  // Items [begin, end) only, handed dynamically to the plan's threads (what a rank of a
+  // distributed render runs of each batch it takes), whatever the scheduler.
+  void run_range(std::size_t begin, std::size_t end, const ItemBody& body);
 
  private:
   struct Arena;

@@ -1,0 +1,34 @@
+// MPI for a distributed render (Open MPI from Debian): the session a process opens when a
+// launcher (mpirun, srun) started it, and the RankGroup render_frame uses. The shared work
+// counter is an integer in a one-sided window on rank 0, advanced with MPI_Fetch_and_op, the
+// paper's "next work item" variable; MPI is called from the main thread only (FUNNELED).
+#pragma once
+
+#include <memory>
+
+#include "renderer/rank_group.h"
+
+namespace tessera {
+
+// True when built with MPI and started by an MPI launcher (its environment says so): only
+// then is MPI initialised, so a plain run pays nothing for it.
+bool launched_by_mpi();
+
+class MpiSession {
+ public:
+  MpiSession(int& argc, char**& argv);  // MPI_Init_thread; throws std::runtime_error
+  ~MpiSession();  // MPI_Finalize
+  MpiSession(const MpiSession&) = delete;
+  MpiSession& operator=(const MpiSession&) = delete;
+  int rank() const { return rank_; }
+  int size() const { return size_; }
+  // The world's ranks as a RankGroup (the window is created collectively: every rank calls).
+  std::unique_ptr<RankGroup> ranks() const;
+  // Ends every rank's process (MPI_Abort), e.g. when this rank failed and the others wait.
+  [[noreturn]] static void abort_all(int exit_code);
+
+ private:
+  int rank_ = 0, size_ = 1;
+};
+
+}  // namespace tessera

@@ -1,0 +1,108 @@
+// Distributed rendering for real: `mpirun -np N tessera render ...` with several processes
+// (Open MPI, --oversubscribe on this 2-core machine), against the same render in one process.
+// Every rank renders the tiles it takes from the shared counter (or its block), and after each
+// wave the ranks exchange those tiles' pixels, so the image is the single process's bit for bit.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <string>
+#include <unistd.h>
+
+#include "tests/exr_read.h"
+#include "tests/test_support.h"
+
+namespace tessera {
+namespace {
+
+std::string quote(const std::string& s) { return "'" + s + "'"; }
+
+bool have_mpirun() { return std::system("command -v mpirun > /dev/null 2>&1") == 0; }
+
+// Open MPI refuses root without --allow-run-as-root (CI runs as root); --bind-to none lets
+// each rank's TBB threads use every core. Leak checking is off for the ranks: a sanitizer
+// build would report Open MPI's own allocations, which it keeps until exit.
+std::string mpirun(int ranks) {
+  return "ASAN_OPTIONS=detect_leaks=0 timeout 300 mpirun --oversubscribe --bind-to none " +
+         std::string(geteuid() == 0 ? "--allow-run-as-root " : "") + "-np " + std::to_string(ranks) + " ";
+}
+
+std::string render_args(const std::string& out, const std::string& extra) {
+  return quote(test::tessera_exe()) + " render " + quote(test::scene_path("cornell-box/cornell-box.gltf")) +
+         " --width 40 --height 36 --seed 9 -o " + quote(out) + " " + extra;
+}
+
+void expect_same_pixels(const std::string& a, const std::string& b) {
+  EXPECT_EQ(test::exr_rgb(a), test::exr_rgb(b)) << a << " and " << b << " differ";
+}
+
+class MpiRender : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!have_mpirun()) GTEST_SKIP() << "mpirun not found (apt-get install openmpi-bin)";
+  }
+};
+
+TEST_F(MpiRender, AnyNumberOfRanksGivesTheSingleProcessBits) {
+  const std::string dir = test::make_temp_dir("mpi-ranks");
+  const std::string opts = "-q --spp 16 --aov albedo,normal,depth,halves ";
+  ASSERT_EQ(test::run_command(render_args(dir + "/one.exr", opts + "--tile-size 8")).exit_code, 0);
+  for (int ranks : {1, 2, 3}) {
+    const std::string out = dir + "/mpi" + std::to_string(ranks) + ".exr";
+    const auto r = test::run_command(mpirun(ranks) + render_args(out, opts + "--tile-size 8"));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    expect_same_pixels(dir + "/one.exr", out);
+  }
+  // The paper's static chunks across ranks, and another tile size and thread count.
+  const auto st = test::run_command(mpirun(2) + render_args(dir + "/static.exr", opts + "--tile-size 8 --rank-scheduler static"));
+  ASSERT_EQ(st.exit_code, 0) << st.err;
+  expect_same_pixels(dir + "/one.exr", dir + "/static.exr");
+  ASSERT_EQ(test::run_command(render_args(dir + "/one64.exr", opts + "--tile-size 64 --threads 1")).exit_code, 0);
+  ASSERT_EQ(test::run_command(mpirun(3) + render_args(dir + "/mpi64.exr", opts + "--tile-size 64")).exit_code, 0);
+  expect_same_pixels(dir + "/one64.exr", dir + "/mpi64.exr");
+}
+
+// Adaptive sampling decides between waves from the whole film: every rank has it.
+TEST_F(MpiRender, AdaptiveSamplingStopsThePixelsOneProcessStops) {
+  const std::string dir = test::make_temp_dir("mpi-adaptive");
+  const std::string opts = "-q --spp 64 --noise-threshold 0.05 --tile-size 8";
+  ASSERT_EQ(test::run_command(render_args(dir + "/one.exr", opts)).exit_code, 0);
+  const auto r = test::run_command(mpirun(2) + render_args(dir + "/two.exr", opts));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  expect_same_pixels(dir + "/one.exr", dir + "/two.exr");
+}
+
+// A frame stopped by --time-limit, continued under MPI, and the other way round: the
+// uninterrupted frame's bits.
+TEST_F(MpiRender, APartialFrameResumesAcrossRanksToTheSameBits) {
+  const std::string dir = test::make_temp_dir("mpi-resume");
+  const std::string opts = "-q --spp 256 --tile-size 8";
+  ASSERT_EQ(test::run_command(render_args(dir + "/whole.exr", opts)).exit_code, 0);
+  ASSERT_EQ(test::run_command(render_args(dir + "/a.exr", opts + " --time-limit 0.01")).exit_code, 0);
+  ASSERT_EQ(test::exr_int(dir + "/a.exr", "partial"), 1) << "not left partial: nothing to test";
+  const auto r = test::run_command(mpirun(2) + render_args(dir + "/a.exr", opts + " --resume " + quote(dir + "/a.exr")));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  expect_same_pixels(dir + "/whole.exr", dir + "/a.exr");
+  ASSERT_EQ(test::run_command(mpirun(3) + render_args(dir + "/b.exr", opts + " --time-limit 0.01")).exit_code, 0);
+  ASSERT_EQ(test::exr_int(dir + "/b.exr", "partial"), 1) << "not left partial: nothing to test";
+  ASSERT_EQ(test::run_command(render_args(dir + "/b.exr", opts + " --resume " + quote(dir + "/b.exr"))).exit_code, 0);
+  expect_same_pixels(dir + "/whole.exr", dir + "/b.exr");
+}
+
+// Rank 0 speaks for all: one summary; and a scene no rank can read ends the whole job with
+// exit 2 and the file named.
+TEST_F(MpiRender, RankZeroSpeaksAndAFailureEndsTheJob) {
+  const std::string dir = test::make_temp_dir("mpi-speak");
+  const auto r = test::run_command(mpirun(3) + render_args(dir + "/f.exr", "--spp 16"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::size_t wrote = 0;
+  for (std::size_t at = r.err.find("wrote "); at != std::string::npos; at = r.err.find("wrote ", at + 1)) ++wrote;
+  EXPECT_EQ(wrote, 1u) << r.err;
+  EXPECT_NE(r.err.find("40x36, 16 spp"), std::string::npos) << r.err;
+  const auto bad = test::run_command(mpirun(2) + quote(test::tessera_exe()) + " render " + quote(dir + "/missing.gltf") +
+                                     " -o " + quote(dir + "/x.exr"));
+  EXPECT_EQ(bad.exit_code, 2) << bad.err;
+  EXPECT_NE(bad.err.find(dir + "/missing.gltf"), std::string::npos) << bad.err;
+}
+
+}  // namespace
+}  // namespace tessera
