@@ -219,7 +219,17 @@ int run_render(const RenderOptions& options, RankGroup* ranks) {
   const auto start = std::chrono::steady_clock::now();
   int rendered = 0, skipped = 0;
   SceneCache scene_cache;  // what the frames share: textures, the environment, unmoved BVHs
-  for (PlannedFrame& f : frames) {
+  // Under MPI, with at least as many frames as ranks, whole frames go to the ranks (each
+  // taken from the shared counter and rendered by its rank alone); else the ranks share the
+  // tiles of every frame.
+  const bool whole_frames = ranks && ranks->size() > 1 && frames.size() >= static_cast<std::size_t>(ranks->size());
+  RankGroup* tile_ranks = whole_frames ? nullptr : ranks;
+  if (whole_frames) ranks->start_wave(frames.size());
+  std::size_t sequential = 0;
+  auto next_frame = [&] { return whole_frames ? ranks->next_items(1).first : sequential++; };  // frames.size(): none
+  bool interrupted = false;
+  for (std::size_t k = next_frame(); k < frames.size() && !interrupted; k = next_frame()) {
+    PlannedFrame& f = frames[k];
     if (o.skip_existing) {
       const ExistingFrame existing = existing_frame(f.options.output);
       if (existing == ExistingFrame::Finished) {
@@ -231,13 +241,19 @@ int run_render(const RenderOptions& options, RankGroup* ranks) {
       if (existing == ExistingFrame::Partial) f.options.resume = f.options.output;
     }
     const bool first = rendered == 0;
-    const FrameJobResult done =
-        render_frame_job(f.options, {&document, framing.empty() ? nullptr : &framing, f.label, first, &scene_cache, ranks});
+    const FrameJobResult done = render_frame_job(
+        f.options, {&document, framing.empty() ? nullptr : &framing, f.label, first, &scene_cache, tile_ranks});
     ++rendered;
-    if (done.interrupted) return kExitInterrupted;
+    interrupted = done.interrupted;
   }
+  if (whole_frames) {  // every rank gets here, interrupted or not: the sums are collective
+    rendered = static_cast<int>(ranks->sum(rendered));
+    skipped = static_cast<int>(ranks->sum(skipped));
+  }
+  if (interrupted) return kExitInterrupted;
   if (!o.quiet && !o.frames.empty())
-    fmt::print(stderr, "tessera: frames {}: {} rendered, {} skipped, {}\n", o.frames, rendered, skipped,
+    fmt::print(stderr, "tessera: frames {}: {} rendered{}, {} skipped, {}\n", o.frames, rendered,
+               whole_frames ? fmt::format(" by {} ranks", ranks->size()) : "", skipped,
                format_duration(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()));
   return kExitSuccess;
 }

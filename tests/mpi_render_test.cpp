@@ -88,6 +88,26 @@ TEST_F(MpiRender, APartialFrameResumesAcrossRanksToTheSameBits) {
   expect_same_pixels(dir + "/whole.exr", dir + "/b.exr");
 }
 
+// A sequence with at least as many frames as ranks: whole frames go to the ranks, each taken
+// from the shared counter; with fewer, the ranks share every frame's tiles. Either way every
+// frame file is the one process's, bit for bit.
+TEST_F(MpiRender, SequencesHandWholeFramesToRanks) {
+  const std::string dir = test::make_temp_dir("mpi-frames");
+  const std::string box = quote(test::tessera_exe()) + " render " +
+                          quote(test::scene_path("khronos/BoxAnimated/glTF-Binary/BoxAnimated.glb")) +
+                          " --width 40 --spp 8 --seed 4 ";
+  ASSERT_EQ(test::run_command(box + "-q --frames 0:4 -o " + quote(dir + "/one.#.exr")).exit_code, 0);
+  const auto whole = test::run_command(mpirun(2) + box + "--frames 0:4 -o " + quote(dir + "/two.#.exr"));
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  EXPECT_NE(whole.err.find("frames 0:4: 5 rendered by 2 ranks, 0 skipped"), std::string::npos) << whole.err;
+  for (int f = 0; f <= 4; ++f)
+    expect_same_pixels(dir + "/one." + std::to_string(f) + ".exr", dir + "/two." + std::to_string(f) + ".exr");
+  const auto tiles = test::run_command(mpirun(3) + box + "-q --frames 3:4 -o " + quote(dir + "/three.#.exr"));
+  ASSERT_EQ(tiles.exit_code, 0) << tiles.err;
+  for (int f = 3; f <= 4; ++f)
+    expect_same_pixels(dir + "/one." + std::to_string(f) + ".exr", dir + "/three." + std::to_string(f) + ".exr");
+}
+
 // Rank 0 speaks for all: one summary; and a scene no rank can read ends the whole job with
 // exit 2 and the file named.
 TEST_F(MpiRender, RankZeroSpeaksAndAFailureEndsTheJob) {
