@@ -4,7 +4,9 @@
 // wave the ranks exchange those tiles' pixels, so the image is the single process's bit for bit.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <string>
 #include <unistd.h>
 
@@ -22,7 +24,7 @@ bool have_mpirun() { return std::system("command -v mpirun > /dev/null 2>&1") ==
 // each rank's TBB threads use every core. Leak checking is off for the ranks: a sanitizer
 // build would report Open MPI's own allocations, which it keeps until exit.
 std::string mpirun(int ranks) {
-  return "ASAN_OPTIONS=detect_leaks=0 timeout 300 mpirun --oversubscribe --bind-to none " +
+  return "env ASAN_OPTIONS=detect_leaks=0 timeout 300 mpirun --oversubscribe --bind-to none " +
          std::string(geteuid() == 0 ? "--allow-run-as-root " : "") + "-np " + std::to_string(ranks) + " ";
 }
 
@@ -106,6 +108,35 @@ TEST_F(MpiRender, SequencesHandWholeFramesToRanks) {
   ASSERT_EQ(tiles.exit_code, 0) << tiles.err;
   for (int f = 3; f <= 4; ++f)
     expect_same_pixels(dir + "/one." + std::to_string(f) + ".exr", dir + "/three." + std::to_string(f) + ".exr");
+}
+
+// A rank killed mid-frame (SIGKILL, as a crashed or lost node): the job ends with a non-zero
+// exit within a bounded time (Open MPI notices and ends the other ranks), and the checkpoint
+// rank 0 wrote before it resumes, in one process, to the uninterrupted frame's bits.
+TEST_F(MpiRender, AKilledRankEndsTheJobAndTheCheckpointResumes) {
+  const std::string dir = test::make_temp_dir("mpi-kill");
+  const std::string out = dir + "/k.exr", opts = "-q --spp 1024 --checkpoint 0.001 ";
+  std::ofstream(dir + "/kill.sh") << R"sh(out=$1; shift
+"$@" > /dev/null 2>&1 &
+job=$!
+for i in $(seq 1 3000); do [ -f "$out" ] && break; sleep 0.01; done
+t0=$(date +%s%N)
+for p in $(pgrep -f -- "$out"); do
+  if grep -qa "OMPI_COMM_WORLD_RANK=1" "/proc/$p/environ" 2>/dev/null; then kill -9 "$p"; fi
+done
+wait $job; rc=$?
+echo "rc=$rc ms=$(( ($(date +%s%N) - t0) / 1000000 ))")sh";
+  const auto r = test::run_command("bash " + quote(dir + "/kill.sh") + " " + quote(out) + " " + mpirun(2) +
+                                   render_args(out, opts));
+  int rc = 0, ms = 0;
+  ASSERT_EQ(std::sscanf(r.out.c_str(), "rc=%d ms=%d", &rc, &ms), 2) << r.out << r.err;
+  EXPECT_NE(rc, 0) << "the job went on without its rank";
+  EXPECT_LT(ms, 60000) << "the job took too long to end";
+  ASSERT_EQ(test::exr_int(out, "partial"), 1) << "no checkpoint before the kill: nothing to test";
+  const auto resumed = test::run_command(render_args(out, opts + "--resume " + quote(out)));
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  ASSERT_EQ(test::run_command(render_args(dir + "/whole.exr", opts)).exit_code, 0);
+  expect_same_pixels(dir + "/whole.exr", out);
 }
 
 // Rank 0 speaks for all: one summary; and a scene no rank can read ends the whole job with
