@@ -17,6 +17,7 @@
 
 #include "scene_io/gltf_accessor.h"
 #include "scene_io/gltf_hierarchy.h"
+#include "scene_io/gltf_instancing.h"
 #include "scene_io/gltf_material.h"
 #include "scene_io/gltf_mesh.h"
 #include "scene_io/gltf_parse.h"
@@ -272,19 +273,52 @@ class Converter {
     // A skinned mesh is in world space already: the specification ignores its node's transform.
     const std::vector<glm::mat4> placed =
         deform.skin ? std::vector<glm::mat4>(steps(), glm::mat4(1.0f)) : worlds(index);
-    Instance instance{it->second, placed[0], node.name, {}};
+    const std::vector<glm::mat4> locals = read_gpu_instances(node, index, reader_);
+    if (locals.empty()) {
+      place(it->second, placed, node, index, exact_reach(out_.meshes[it->second], placed));
+      return;
+    }
+    // Many placements of one mesh: bounds from its box's corners, not every vertex of each.
+    const Bounds3 box = exact_reach(out_.meshes[it->second], std::vector<glm::mat4>(steps(), glm::mat4(1.0f)));
+    std::vector<glm::mat4> at(steps());
+    for (const glm::mat4& local : locals) {
+      for (int k = 0; k < steps(); ++k) at[k] = placed[k] * local;
+      place(it->second, at, node, index, corner_reach(box, at));
+    }
+  }
+
+  // Puts mesh `slot` at `placed` (one matrix per motion step), reaching `reach`.
+  void place(int slot, const std::vector<glm::mat4>& placed, const tinygltf::Node& node, int index,
+             const Bounds3& reach) {
+    Instance instance{slot, placed[0], node.name, {}};
     if (std::any_of(placed.begin(), placed.end(), [&](const glm::mat4& m) { return m != placed[0]; }))
       instance.motion.assign(placed.begin() + 1, placed.end());
     out_.instances.push_back(std::move(instance));
-    Bounds3 reach;  // finite matrices and positions can still overflow together
-    for (const TriangleMesh& prim : out_.meshes[it->second].primitives)
+    if (!all_finite(reach.lo) || !all_finite(reach.hi))  // finite matrices and positions can still overflow together
+      fail(fmt::format("node {} places mesh {} beyond the range of 32-bit floats", index, node.mesh));
+    out_.bounds.extend(reach);
+  }
+
+  // Where `mesh`'s vertices go under `placed`, at every motion step.
+  Bounds3 exact_reach(const Mesh& mesh, const std::vector<glm::mat4>& placed) const {
+    Bounds3 reach;
+    for (const TriangleMesh& prim : mesh.primitives)
       for (int k = 0; k < steps(); ++k) {
         const auto& positions = k == 0 || !prim.deforms() ? prim.positions : prim.motion_positions[k - 1];
         for (const glm::vec3& p : positions) reach.extend(glm::vec3(placed[k] * glm::vec4(p, 1.0f)));
       }
-    if (!all_finite(reach.lo) || !all_finite(reach.hi))
-      fail(fmt::format("node {} places mesh {} beyond the range of 32-bit floats", index, node.mesh));
-    out_.bounds.extend(reach);
+    return reach;
+  }
+
+  // Where the corners of `box` go under `placed`: a box around the placed mesh.
+  static Bounds3 corner_reach(const Bounds3& box, const std::vector<glm::mat4>& placed) {
+    Bounds3 reach;
+    for (const glm::mat4& m : placed)
+      for (int c = 0; c < 8; ++c) {
+        const glm::vec3 p(c & 1 ? box.hi.x : box.lo.x, c & 2 ? box.hi.y : box.lo.y, c & 4 ? box.hi.z : box.lo.z);
+        reach.extend(glm::vec3(m * glm::vec4(p, 1.0f)));
+      }
+    return reach;
   }
 
   Mesh convert_mesh(int index, const Deformation& deform) {
