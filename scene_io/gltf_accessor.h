@@ -8,11 +8,14 @@
 
 #include <tiny_gltf.h>
 
+#include "scene_io/gltf_defects.h"
+
 namespace tessera {
 
 struct AccessorReader {
   const tinygltf::Model& model;
   const std::string& file;  // for error messages
+  const GltfDefects* defects{};  // accessors and buffers that are placeholders
 
   // Reads accessor `index` as `components` floats per element. `what` names the use
   // ("POSITION of mesh 2 primitive 0") in errors. Normalized integers map to [0,1] or

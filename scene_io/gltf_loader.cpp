@@ -43,13 +43,13 @@ bool finite_matrix(const glm::mat4& m) {
 
 class Converter {
  public:
-  Converter(const tinygltf::Model& model, const std::string& file, GltfLoadResult& result)
-      : model_(model), file_(file), result_(result), out_(result.scene), warnings_(result.warnings),
-        reader_{model, file} {}
+  Converter(const GltfDocument& document, GltfLoadResult& result)
+      : model_(document.model), file_(document.path), defects_(document.defects), result_(result),
+        out_(result.scene), warnings_(result.warnings), reader_{model_, file_, &defects_} {}
 
   void run(const GltfLoadParams& params) {
     check_extensions();
-    out_.materials = convert_materials(model_, file_, warnings_);
+    out_.materials = convert_materials(model_, file_, defects_, warnings_);
     result_.material_variants = read_material_variants(model_, file_);
     if (!params.variant.empty())
       result_.material_variant = choose_material_variant(result_.material_variants, params.variant, file_);
@@ -65,6 +65,7 @@ class Converter {
       result_.morph_meshes += std::any_of(m.primitives.begin(), m.primitives.end(),
                                           [](const tinygltf::Primitive& p) { return !p.targets.empty(); });
     traverse(scene_roots(model_, choose_scene(params.scene), parent_, file_));
+    for (std::string& w : defects_.unused_warnings()) warnings_.push_back(std::move(w));
   }
 
  private:
@@ -456,6 +457,7 @@ class Converter {
 
   const tinygltf::Model& model_;
   const std::string& file_;
+  const GltfDefects& defects_;
   GltfLoadResult& result_;
   SceneDescription& out_;
   std::vector<std::string>& warnings_;
@@ -484,7 +486,9 @@ void deduplicate(std::vector<std::string>& warnings) {
 
 GltfDocument read_gltf_from_memory(const std::vector<std::uint8_t>& bytes, const std::string& display_name,
                                    const std::string& base_dir) {
-  return GltfDocument{display_name, parse_gltf(bytes, display_name, base_dir)};
+  GltfDocument document{display_name, {}, {}};
+  document.model = parse_gltf(bytes, display_name, base_dir, document.defects);
+  return document;
 }
 
 GltfDocument read_gltf(const std::string& path) {
@@ -501,7 +505,7 @@ GltfDocument read_gltf(const std::string& path) {
 GltfLoadResult convert_gltf(const GltfDocument& document, const GltfLoadParams& params) {
   GltfLoadResult result;
   result.scene.source_path = document.path;
-  Converter(document.model, document.path, result).run(params);
+  Converter(document, result).run(params);
   deduplicate(result.warnings);
   return result;
 }
