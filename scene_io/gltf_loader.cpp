@@ -259,6 +259,7 @@ class Converter {
     if (node.mesh >= static_cast<int>(model_.meshes.size()))
       fail(fmt::format("node {} refers to mesh {}, but the file has {}", index, node.mesh,
                        count_of(model_.meshes.size(), "mesh")));
+    defects_.check_used(fmt::format("mesh {}", node.mesh), file_);
     // A mesh with no triangles (only points or lines) is neither stored nor placed. A morphed
     // or skinned mesh is the node's own (another node may deform it differently).
     const Deformation deform = deformation(node, index);
@@ -336,6 +337,7 @@ class Converter {
       if (prim->material >= static_cast<int>(out_.materials.size()))
         fail(fmt::format("{} refers to material {}, but the file has {}", what, prim->material,
                          count_of(out_.materials.size(), "material")));
+      if (prim->material >= 0) defects_.check_used(fmt::format("material {}", prim->material), file_);
       if (!prim->indices.empty()) mesh.primitives.push_back(std::move(*prim));
     }
     return mesh;

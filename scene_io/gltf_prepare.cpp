@@ -154,6 +154,37 @@ bool hand_over_viewless_indices(Json& j) {
   return changed;
 }
 
+// Mistakes tinygltf passes over in silence: a mesh without a primitives array (tinygltf reads
+// it as a mesh without primitives), a texture reference of a negative index (read as none).
+void flag_silent_mistakes(const Json& j, GltfDefects& defects) {
+  if (const Json* meshes = member(j, "meshes"); meshes && meshes->is_array())
+    for (std::size_t m = 0; m < meshes->size(); ++m) {
+      const Json* prims = member((*meshes)[m], "primitives");
+      if (!prims || !prims->is_array() || prims->empty())
+        defects.add(fmt::format("mesh {}", m),
+                    fmt::format("mesh {} has {}; glTF requires an array of at least one primitive", m,
+                                !prims ? "no \"primitives\"" : prims->is_array() ? "an empty \"primitives\" array"
+                                                                 : "a \"primitives\" that is not an array"));
+    }
+  const Json* materials = member(j, "materials");
+  if (!materials || !materials->is_array()) return;
+  for (std::size_t m = 0; m < materials->size(); ++m) {
+    std::vector<std::pair<std::string, const Json*>> stack = {{"", &(*materials)[m]}};
+    while (!stack.empty()) {  // every textureInfo, in the core material and its extensions
+      const auto [key, object] = stack.back();
+      stack.pop_back();
+      if (!object->is_object()) continue;
+      const Json* index = member(*object, "index");
+      if (index && index->is_number_integer() && index->get<std::int64_t>() < 0) {
+        defects.add(fmt::format("material {}", m), fmt::format("material {} has {} index {}, which names no texture", m,
+                                                               key, index->get<std::int64_t>()));
+        break;
+      }
+      for (auto it = object->begin(); it != object->end(); ++it) stack.emplace_back(it.key(), &*it);
+    }
+  }
+}
+
 }  // namespace
 
 std::optional<std::string> prepare_gltf_json(std::string_view json, const std::string& name,
@@ -167,6 +198,7 @@ std::optional<std::string> prepare_gltf_json(std::string_view json, const std::s
   changed |= replace_dataless_buffers(j, context, defects);
   changed |= replace_unknown_accessors(j, defects);
   changed |= hand_over_viewless_indices(j);
+  flag_silent_mistakes(j, defects);
   if (!changed) return std::nullopt;
   return j.dump();
 }

@@ -59,5 +59,27 @@ TEST(GltfConformance, UnusedObjectsOfEveryKindLoadInvalidOnesWithAWarning) {
                             "it is not a PNG, JPEG or WebP image"}));
 }
 
+TEST(GltfConformance, InvalidObjectsTheSceneDoesNotUseAreWarnings) {
+  // Validator: errors INVALID_INDEX (material 0's baseColorTexture index -1) and TYPE_MISMATCH
+  // (mesh 1's primitives is an object). Used, each refuses the file (tests/data/malformed/
+  // texture_index_negative.gltf, primitives_not_array.gltf).
+  const GltfLoadResult r = load("unused_invalid_objects.gltf");
+  EXPECT_EQ(triangles(r.scene), 1u);
+  EXPECT_EQ(r.warnings, (std::vector<std::string>{
+                            "ignored, as the scene does not use it: material 0 has baseColorTexture index -1, which "
+                            "names no texture",
+                            "ignored, as the scene does not use it: mesh 1 has a \"primitives\" that is not an array; "
+                            "glTF requires an array of at least one primitive"}));
+}
+
+TEST(GltfConformance, InfoListsTheWarnings) {
+  const std::string path = test::data_path("conformance/unused_invalid_objects.gltf");
+  const test::CommandResult r = test::run_command(test::tessera_exe() + " info '" + path + "'");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_NE(r.err.find("tessera: warning: " + path + ": ignored, as the scene does not use it: mesh 1 has"),
+            std::string::npos)
+      << r.err;
+}
+
 }  // namespace
 }  // namespace tessera
