@@ -223,6 +223,25 @@ Problem check_camera(const Json& camera, std::size_t i) {
   return std::nullopt;
 }
 
+Problem check_skin(const Json& skin, std::size_t i) {
+  const Json* joints = member(skin, "joints");
+  if (!joints || !joints->is_array() || joints->empty())
+    return fmt::format("skin {} has no joints (glTF requires a \"joints\" array of at least one node)", i);
+  return std::nullopt;
+}
+
+// The first sampler of the animation without its input or output accessor, named once.
+Problem check_animation(const Json& animation, std::size_t i) {
+  const Json* samplers = member(animation, "samplers");
+  if (!samplers || !samplers->is_array()) return std::nullopt;
+  std::size_t incomplete = 0, first = 0;
+  for (std::size_t s = samplers->size(); s-- > 0;)
+    if (index_of((*samplers)[s], "input") < 0 || index_of((*samplers)[s], "output") < 0) ++incomplete, first = s;
+  if (incomplete == 0) return std::nullopt;
+  return fmt::format("animation {} sampler {}{} has no valid input and output accessors (glTF requires both)", i,
+                     first, incomplete > 1 ? fmt::format(" (and {} more)", incomplete - 1) : "");
+}
+
 template <typename Check>
 Problem each(const Json& j, const char* key, Check check) {
   const Json* a = member(j, key);
@@ -308,6 +327,8 @@ std::optional<std::string> diagnose_gltf_json(const GltfDiagnoseInput& in) {
   if (Problem p = check_mesh_indices(j)) return p;
   if (Problem p = each(j, "images", [&](const Json& im, std::size_t i) { return check_image(im, i, views); }))
     return p;
+  if (Problem p = each(j, "skins", check_skin)) return p;
+  if (Problem p = each(j, "animations", check_animation)) return p;
   return each(j, "cameras", check_camera);
 }
 
