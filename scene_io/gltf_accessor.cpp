@@ -107,6 +107,7 @@ const tinygltf::Accessor& AccessorReader::accessor(int index, const std::string&
     fail(fmt::format("{} refers to accessor {}, but the file has {}", what, index,
                      count_of(model.accessors.size(), "accessor")));
   if (defects) defects->check_used(fmt::format("accessor {}", index), file);
+  if (read_log) read_log->insert(index);
   return model.accessors[index];
 }
 

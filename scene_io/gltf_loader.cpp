@@ -45,7 +45,7 @@ class Converter {
  public:
   Converter(const GltfDocument& document, GltfLoadResult& result)
       : model_(document.model), file_(document.path), defects_(document.defects), result_(result),
-        out_(result.scene), warnings_(result.warnings), reader_{model_, file_, &defects_} {}
+        out_(result.scene), warnings_(result.warnings), reader_{model_, file_, &defects_, &read_accessors_} {}
 
   void run(const GltfLoadParams& params) {
     check_extensions();
@@ -66,10 +66,26 @@ class Converter {
                                           [](const tinygltf::Primitive& p) { return !p.targets.empty(); });
     traverse(scene_roots(model_, choose_scene(params.scene), parent_, file_));
     for (std::string& w : defects_.unused_warnings()) warnings_.push_back(std::move(w));
+    check_unread_accessors();
   }
 
  private:
   [[noreturn]] void fail(const std::string& problem) const { throw SceneLoadError(file_, problem); }
+
+  // The policy for accessors nothing read: what would refuse a used one (NaN, a range past its
+  // bufferView) is a warning. Read as a whole, without the reader's log.
+  void check_unread_accessors() {
+    const AccessorReader whole{model_, file_, &defects_};
+    for (std::size_t i = 0; i < model_.accessors.size(); ++i) {
+      const int components = gltf_component_count(model_.accessors[i].type);
+      if (read_accessors_.count(static_cast<int>(i)) || components == 0) continue;
+      try {
+        whole.floats(static_cast<int>(i), components, "unused");
+      } catch (const SceneLoadError& e) {
+        warnings_.push_back("ignored, as the scene does not use it: " + e.problem());
+      }
+    }
+  }
 
   int steps() const { return static_cast<int>(poses_.size()); }
 
@@ -463,6 +479,7 @@ class Converter {
   GltfLoadResult& result_;
   SceneDescription& out_;
   std::vector<std::string>& warnings_;
+  std::set<int> read_accessors_;  // by reader_, so used (declared before it)
   AccessorReader reader_;
   std::map<int, int> mesh_slot_;  // glTF mesh index (-1 - node for a deformed one) -> index in out_.meshes
   std::vector<int> parent_;  // per node, -1 for roots

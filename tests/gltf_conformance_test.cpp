@@ -60,16 +60,18 @@ TEST(GltfConformance, UnusedObjectsOfEveryKindLoadInvalidOnesWithAWarning) {
 }
 
 TEST(GltfConformance, InvalidObjectsTheSceneDoesNotUseAreWarnings) {
-  // Validator: errors INVALID_INDEX (material 0's baseColorTexture index -1) and TYPE_MISMATCH
-  // (mesh 1's primitives is an object). Used, each refuses the file (tests/data/malformed/
-  // texture_index_negative.gltf, primitives_not_array.gltf).
+  // Validator: errors INVALID_INDEX (material 0's baseColorTexture index -1), TYPE_MISMATCH
+  // (mesh 1's primitives is an object) and ACCESSOR_INVALID_FLOAT (accessor 1 holds a NaN).
+  // Used, each refuses the file (tests/data/malformed/texture_index_negative.gltf,
+  // primitives_not_array.gltf; GltfLoader.NonFinitePositionsAreRejected).
   const GltfLoadResult r = load("unused_invalid_objects.gltf");
   EXPECT_EQ(triangles(r.scene), 1u);
   EXPECT_EQ(r.warnings, (std::vector<std::string>{
                             "ignored, as the scene does not use it: material 0 has baseColorTexture index -1, which "
                             "names no texture",
                             "ignored, as the scene does not use it: mesh 1 has a \"primitives\" that is not an array; "
-                            "glTF requires an array of at least one primitive"}));
+                            "glTF requires an array of at least one primitive",
+                            "ignored, as the scene does not use it: accessor 1 (unused) holds NaN at element 0"}));
 }
 
 TEST(GltfConformance, InfoListsTheWarnings) {
