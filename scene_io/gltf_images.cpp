@@ -87,7 +87,9 @@ bool is_ktx2_image(const tinygltf::Image& image) {
 int texture_image(const tinygltf::Model& model, const std::string& file, int index, const GltfDefects& defects) {
   const tinygltf::Texture& tex = model.textures[index];
   int source = extension_source(tex, "EXT_texture_webp");
-  if (source < 0) source = tex.source;
+  const int images = static_cast<int>(model.images.size());
+  // A WebP source tessera cannot read falls back to `source`, as the extension intends.
+  if (source < 0 || (source < images && tex.source >= 0 && is_ktx2_image(model.images[source]))) source = tex.source;
   if (source >= static_cast<int>(model.images.size()))
     throw SceneLoadError(file, fmt::format("texture {} refers to image {}, but the file has {}", index, source,
                                            count_of(model.images.size(), "image")));
