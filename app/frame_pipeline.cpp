@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "app/auto_background.h"
 #include "app/exit_codes.h"
 #include "app/frame_denoise.h"
 #include "app/memory_check.h"
@@ -24,8 +25,14 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
-vec3 parse_background(const std::string& text, bool scene_has_lights) {
-  if (text == "auto") return vec3(scene_has_lights ? 0.0f : 1.0f);
+// `described`: what the summary line says of it ("white (auto: no lights)").
+vec3 parse_background(const std::string& text, const SceneDescription& scene, std::string& described) {
+  if (text == "auto") {
+    const AutoBackground choice = choose_auto_background(scene);
+    described = fmt::format("{} (auto: {})", choice.black ? "black" : "white", choice.why);
+    return vec3(choice.black ? 0.0f : 1.0f);
+  }
+  described = text;
   vec3 c;
   char tail;
   const int n = std::sscanf(text.c_str(), "%f,%f,%f%c", &c.r, &c.g, &c.b, &tail);
@@ -173,7 +180,8 @@ FramePlan plan_frame(const RenderOptions& o, const GltfLoadResult& loaded, const
   plan.cost_layer = std::find(o.aovs.begin(), o.aovs.end(), "cost") != o.aovs.end();
   plan.denoise = o.denoise;
   if (o.denoise) aovs.albedo = aovs.normal = aovs.halves = true;  // what the denoiser reads
-  plan.environment.background = parse_background(o.background, scene_has_lights(scene));
+  plan.environment.background = parse_background(o.background, scene, plan.background);
+  if (!o.envmap.empty()) plan.background = "envmap " + o.envmap;
   plan.environment.image_path = o.envmap;
   plan.environment.scale = o.envmap_scale;
   plan.environment.rotate_degrees = o.envmap_rotate;

@@ -45,6 +45,7 @@ struct FramePlan {
   Camera camera;
   CameraParams camera_params;
   EnvironmentParams environment;
+  std::string background;  // as the summary names it: "white (auto: no lights)", "0.5", "envmap sky.exr"
   std::string output, preview;  // checked writable
   bool cost_layer = false;  // --aov cost: CPU time per tile, from the profile
   bool denoise = false;  // --denoise: the settings carry the half buffers and features it needs

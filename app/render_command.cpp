@@ -109,8 +109,9 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
   cmd->add_option("--fov", o.fov, "Vertical field of view in degrees, overriding a perspective camera's")
       ->check(CLI::Range(0.01f, 179.0f));
   cmd->add_option("--background", o.background,
-                  "Uniform background radiance: R,G,B, or one number for grey, or 'auto': black when the scene has lights "
-                  "(punctual, or emissive without an emissive texture), else white 1,1,1. Ignored with --envmap")
+                  "Uniform background radiance: R,G,B, or one number for grey, or 'auto': black when the scene's lights can "
+                  "light it (punctual, or untextured emitters giving at least 1% of the power a white background would), "
+                  "else white 1,1,1. Ignored with --envmap")
       ->capture_default_str();
   cmd->add_option("--envmap", o.envmap, "Equirectangular environment image (.hdr, .exr, ...) lighting the scene");
   cmd->add_option("--envmap-scale", o.envmap_scale, "Multiplier on the environment image's radiance")

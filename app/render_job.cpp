@@ -140,9 +140,9 @@ FrameJobResult render_frame_job(const RenderOptions& options, const FrameJob& jo
         built.updated ? fmt::format("scene updated in {:.2f} s ({} triangles rebuilt, textures kept)", built.seconds,
                                     built.scene->rebuilt_triangles)
                       : fmt::format("BVH and textures {:.2f} s (BVH {:.2f} s)", built.seconds, built.scene->bvh_build_seconds);
-    fmt::print(stderr, "tessera: {}: {} triangles; load {:.2f} s, {}, render {:.2f} s{}\n", o.scene_path, triangles,
-               load_seconds, build, result.stats.seconds,
-               denoise_seconds > 0.0 ? fmt::format(", denoise {:.2f} s", denoise_seconds) : "");
+    fmt::print(stderr, "tessera: {}: {} triangles; load {:.2f} s, {}, render {:.2f} s{}; background {}\n", o.scene_path,
+               triangles, load_seconds, build, result.stats.seconds,
+               denoise_seconds > 0.0 ? fmt::format(", denoise {:.2f} s", denoise_seconds) : "", plan.background);
     print_summary(o, plan.output, settings, result);
   }
   return {interrupts.interrupted()};

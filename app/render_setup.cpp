@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "app/auto_background.h"
 #include "app/exit_codes.h"
 #include "scene_io/gltf_loader.h"
 
@@ -43,12 +44,6 @@ std::uint64_t emissive_triangle_count(const SceneDescription& scene, bool untext
   return count;
 }
 
-bool scene_has_lights(const SceneDescription& scene) {
-  // Emission through a texture is mostly decoration (screens, glowing details), not what
-  // lights a scene: it does not make the automatic background black.
-  return !scene.lights.empty() || emissive_triangle_count(scene, /*untextured_only=*/true) > 0;
-}
-
 float autofocus_distance(const RenderScene& scene, const RenderCamera& camera) {
   RenderCamera pinhole = camera;
   pinhole.lens_radius = 0.0f;
@@ -68,7 +63,7 @@ MeasuredScene load_measured_scene(const std::string& path, int width, const std:
   resolve_resolution(first, m.width, m.height);
   const Camera camera = choose_camera(loaded.scene, "", m.width, m.height);
   EnvironmentParams env;
-  env.background = vec3(scene_has_lights(loaded.scene) ? 0.0f : 1.0f);
+  env.background = vec3(choose_auto_background(loaded.scene).black ? 0.0f : 1.0f);
   env.image_path = envmap;
   m.scene = std::make_unique<RenderScene>(std::move(loaded.scene), env);
   m.camera = make_camera(camera, m.width, m.height, {});

@@ -25,10 +25,6 @@ void resolve_resolution(const Camera* camera, int& width, int& height);
 // `untextured_only` leaves out emission through an emissive texture.
 std::uint64_t emissive_triangle_count(const SceneDescription& scene, bool untextured_only = false);
 
-// True when the scene has its own light: a punctual light or a triangle emitting without
-// an emissive texture.
-bool scene_has_lights(const SceneDescription& scene);
-
 // Distance along the view axis to what the centre of the image sees, for autofocus.
 float autofocus_distance(const RenderScene& scene, const RenderCamera& camera);
 

@@ -106,6 +106,8 @@ const tinygltf::Accessor& AccessorReader::accessor(int index, const std::string&
   if (index < 0 || index >= static_cast<int>(model.accessors.size()))
     fail(fmt::format("{} refers to accessor {}, but the file has {}", what, index,
                      count_of(model.accessors.size(), "accessor")));
+  if (defects) defects->check_used(fmt::format("accessor {}", index), file);
+  if (read_log) read_log->insert(index);
   return model.accessors[index];
 }
 
@@ -119,6 +121,7 @@ const std::uint8_t* AccessorReader::view_bytes(int view, std::size_t offset, std
   if (bv.buffer < 0 || bv.buffer >= static_cast<int>(model.buffers.size()))
     fail(fmt::format("bufferView {} refers to buffer {}, but the file has {}", view, bv.buffer,
                      count_of(model.buffers.size(), "buffer")));
+  if (defects) defects->check_used(fmt::format("buffer {}", bv.buffer), file);
   const std::vector<unsigned char>& data = model.buffers[bv.buffer].data;
   if (bv.byteOffset > data.size() || bv.byteLength > data.size() - bv.byteOffset)
     fail(fmt::format("bufferView {} spans bytes {}..{} of buffer {}, which has only {} bytes",

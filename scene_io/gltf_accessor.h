@@ -3,16 +3,21 @@
 #pragma once
 
 #include <cstdint>
+#include <set>
 #include <string>
 #include <vector>
 
 #include <tiny_gltf.h>
+
+#include "scene_io/gltf_defects.h"
 
 namespace tessera {
 
 struct AccessorReader {
   const tinygltf::Model& model;
   const std::string& file;  // for error messages
+  const GltfDefects* defects{};  // accessors and buffers that are placeholders
+  std::set<int>* read_log{};  // when given, every accessor index asked for is added
 
   // Reads accessor `index` as `components` floats per element. `what` names the use
   // ("POSITION of mesh 2 primitive 0") in errors. Normalized integers map to [0,1] or

@@ -42,27 +42,29 @@ bool ends_with_glb(const std::string& name) {
 
 GltfContainer check_glb(const std::vector<std::uint8_t>& b, const std::string& name) {
   auto fail = [&](const std::string& problem) { throw SceneLoadError(name, problem); };
-  const std::size_t size = b.size();
+  std::size_t size = b.size();
   if (size < 12)
     fail(fmt::format("is truncated: it has {} bytes, fewer than the 12-byte binary glTF header", size));
   const std::uint32_t version = le32(&b[4]), length = le32(&b[8]);
   if (version != 2) fail(fmt::format("is binary glTF version {}; tessera reads version 2", version));
   if (length > size)
     fail(fmt::format("is truncated: its header gives a length of {} bytes, but the file has {}", length, size));
-  if (length < size)
-    fail(fmt::format("has {} bytes, but its binary glTF header gives a length of {}", size, length));
+  const std::size_t trailing = size - length;  // the stream ends at `length`; the rest is ignored
+  size = length;
+  const char* end = trailing ? "the length its header gives" : "the end of the file";
   if (size < 20) fail("is truncated: it ends before the header of its JSON chunk");
   const std::uint32_t json_length = le32(&b[12]), json_type = le32(&b[16]);
   if (json_type != kChunkJson)
     fail(fmt::format("starts with a chunk of type {}; binary glTF starts with a 'JSON' chunk",
                      chunk_type(json_type)));
   if (json_length > size - 20)
-    fail(fmt::format("has a JSON chunk of {} bytes, which runs past the end of the file ({} bytes)",
-                     json_length, size));
+    fail(fmt::format("has a JSON chunk of {} bytes, which runs past {} ({} bytes)",
+                     json_length, end, size));
   if (json_length == 0) fail("has an empty JSON chunk");
   GltfContainer c;
   c.binary = true;
   c.json = std::string_view(reinterpret_cast<const char*>(&b[20]), json_length);
+  c.trailing_bytes = trailing;
   const std::size_t next = 20 + std::size_t{json_length};
   if (next == size) return c;
   if (size - next < 8)
@@ -73,8 +75,8 @@ GltfContainer check_glb(const std::vector<std::uint8_t>& b, const std::string& n
     fail(fmt::format("has a second chunk of type {}; tessera reads only a 'BIN' chunk there",
                      chunk_type(bin_type)));
   if (bin_length > size - next - 8)
-    fail(fmt::format("has a BIN chunk of {} bytes, which runs past the end of the file ({} bytes)",
-                     bin_length, size));
+    fail(fmt::format("has a BIN chunk of {} bytes, which runs past {} ({} bytes)",
+                     bin_length, end, size));
   if (bin_length == 0) fail("has an empty BIN chunk");
   if (bin_length % 4 != 0)
     fail(fmt::format("has a BIN chunk of {} bytes, not padded to a multiple of 4", bin_length));

@@ -14,6 +14,7 @@ struct GltfContainer {
   bool binary = false;
   std::string_view json;  // the glTF JSON: the whole file, or the .glb's JSON chunk
   std::size_t bin_chunk_size = 0;  // .glb only; 0 when it has no BIN chunk
+  std::size_t trailing_bytes = 0;  // .glb only: bytes after the length its header gives
 };
 
 // Throws SceneLoadError(display_name, ...) for an empty file, a file that is neither glTF

@@ -63,7 +63,14 @@ std::size_t base64_decoded_size(std::string_view s) {
 Problem check_data_uri(const std::string& what, const std::string& uri,
                        std::optional<std::uint64_t> expected_size) {
   const std::size_t comma = uri.find(',');
-  if (comma == std::string::npos || !tinygltf::IsDataURI(uri.substr(0, comma + 1))) {
+  if (comma == std::string::npos)
+    return what + " has a data URI without the ',' that ends its header (data:[media type][;base64],data)";
+  const std::string header = uri.substr(0, comma);
+  if (header.size() < 7 || header.compare(header.size() - 7, 7, ";base64") != 0)
+    return fmt::format("{} has a data URI whose header '{}' does not end in ';base64' (tessera reads base64 data "
+                       "URIs only)",
+                       what, shorten(header));
+  if (!tinygltf::IsDataURI(uri.substr(0, comma + 1))) {
     const std::string media = uri.substr(5, uri.find_first_of(";,") - 5);
     return fmt::format("{} has a data URI of media type '{}' that tessera cannot read (it reads "
                        "base64 data URIs of application/octet-stream, application/gltf-buffer, "
@@ -117,16 +124,9 @@ Problem check_buffer(const Json& b, std::size_t i, const GltfDiagnoseInput& in) 
   const Json* uri_json = member(b, "uri");
   if (uri_json && !uri_json->is_string()) return what + " has a uri that is not a string";
   const std::string uri = uri_json ? uri_json->get<std::string>() : "";
-  if (uri.empty()) {
-    if (!in.binary) return what + " has no uri (only a .glb's buffers may omit it)";
-    if (in.bin_chunk_size == 0)
-      return what + " has no uri, so its data is the BIN chunk, but the file has no BIN chunk";
-    if (length > in.bin_chunk_size)
-      return fmt::format("{} has byteLength {}, but the BIN chunk holds only {} bytes", what, length,
-                         in.bin_chunk_size);
-    return std::nullopt;
-  }
+  if (uri.empty()) return std::nullopt;  // a defect of the buffer alone (gltf_prepare.cpp)
   if (uri.rfind("data:", 0) == 0) return check_data_uri(what, uri, length);
+  if (is_remote_uri(uri)) return fmt::format("{}: tessera reads local files only: {}", what, shorten(uri));
   const std::string path = resolve_gltf_uri(in.base_dir, uri);
   if (const std::string why = unreadable_reason(path); !why.empty())
     return fmt::format("{} refers to {}, which cannot be opened: {}", what, shorten(uri), why);
@@ -181,7 +181,6 @@ Problem check_mesh_indices(const Json& j) {
         return fmt::format("{} refers to accessor {} for its indices, but the file has {}", what,
                            shorten(member((*prims)[p], "indices")->dump()), count_of(accessors, "accessor"));
       const long long v = index_of((*member(j, "accessors"))[a], "bufferView");
-      if (v < 0) return fmt::format("accessor {} (indices of {}) has no bufferView", a, what);
       if (v >= static_cast<long long>(views))
         return fmt::format("accessor {} (indices of {}) refers to bufferView {}, but the file has {}",
                            a, what, v, count_of(views, "bufferView"));
@@ -224,6 +223,25 @@ Problem check_camera(const Json& camera, std::size_t i) {
   return std::nullopt;
 }
 
+Problem check_skin(const Json& skin, std::size_t i) {
+  const Json* joints = member(skin, "joints");
+  if (!joints || !joints->is_array() || joints->empty())
+    return fmt::format("skin {} has no joints (glTF requires a \"joints\" array of at least one node)", i);
+  return std::nullopt;
+}
+
+// The first sampler of the animation without its input or output accessor, named once.
+Problem check_animation(const Json& animation, std::size_t i) {
+  const Json* samplers = member(animation, "samplers");
+  if (!samplers || !samplers->is_array()) return std::nullopt;
+  std::size_t incomplete = 0, first = 0;
+  for (std::size_t s = samplers->size(); s-- > 0;)
+    if (index_of((*samplers)[s], "input") < 0 || index_of((*samplers)[s], "output") < 0) ++incomplete, first = s;
+  if (incomplete == 0) return std::nullopt;
+  return fmt::format("animation {} sampler {}{} has no valid input and output accessors (glTF requires both)", i,
+                     first, incomplete > 1 ? fmt::format(" (and {} more)", incomplete - 1) : "");
+}
+
 template <typename Check>
 Problem each(const Json& j, const char* key, Check check) {
   const Json* a = member(j, key);
@@ -260,6 +278,13 @@ std::string json_syntax_error(const std::string& what, std::string_view json) {
 }
 
 }  // namespace
+
+bool is_remote_uri(const std::string& uri) {
+  const std::size_t colon = uri.find("://");
+  return colon != std::string::npos && colon > 0 &&
+         std::all_of(uri.begin(), uri.begin() + static_cast<std::ptrdiff_t>(colon),
+                     [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '+' || c == '-' || c == '.'; });
+}
 
 std::string resolve_gltf_uri(const std::string& base_dir, const std::string& uri) {
   std::string decoded;
@@ -302,6 +327,8 @@ std::optional<std::string> diagnose_gltf_json(const GltfDiagnoseInput& in) {
   if (Problem p = check_mesh_indices(j)) return p;
   if (Problem p = each(j, "images", [&](const Json& im, std::size_t i) { return check_image(im, i, views); }))
     return p;
+  if (Problem p = each(j, "skins", check_skin)) return p;
+  if (Problem p = each(j, "animations", check_animation)) return p;
   return each(j, "cameras", check_camera);
 }
 
@@ -320,6 +347,11 @@ std::string reword_tinygltf_error(const std::string& err, std::string_view json)
                          shorten(number), line);
     }
     return "is not valid JSON: " + what;
+  }
+  try {  // tinygltf's own checks ("JSON string too short") come before nlohmann's precise ones
+    const Json parsed = Json::parse(json.begin(), json.end());
+  } catch (const Json::exception& e) {
+    return reword_tinygltf_error(e.what(), json);
   }
   std::string joined;
   std::size_t start = 0;

@@ -23,6 +23,9 @@ std::optional<std::string> diagnose_gltf_json(const GltfDiagnoseInput& in);
 // tinygltf's (possibly multi-line) error text as one line, for when the diagnosis finds nothing.
 std::string reword_tinygltf_error(const std::string& err, std::string_view json);
 
+// True for a uri with a scheme (http://, https://, file://...): not a local relative path.
+bool is_remote_uri(const std::string& uri);
+
 // The path of an external resource: base_dir joined with the percent-decoded uri.
 std::string resolve_gltf_uri(const std::string& base_dir, const std::string& uri);
 

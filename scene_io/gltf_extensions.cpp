@@ -7,6 +7,7 @@ namespace tessera {
 
 const std::vector<std::string>& supported_gltf_extensions() {
   static const std::vector<std::string> names = {
+      "EXT_mesh_gpu_instancing",
       "EXT_meshopt_compression",
       "EXT_texture_webp",
       "KHR_draco_mesh_compression",
@@ -44,7 +45,6 @@ ExtensionStatus gltf_extension_status(const std::string& name) {
   // Why some common ones are ignored; any other is simply not implemented.
   static const std::map<std::string, std::string> reasons = {
       {"KHR_materials_pbrSpecularGlossiness", "archived extension; the metallic-roughness material is used"},
-      {"EXT_mesh_gpu_instancing", "not implemented; each mesh is placed once per node"},
       {"KHR_animation_pointer", "not implemented; only node and morph-weight animations play"},
       {"KHR_xmp_json_ld", "metadata only"}};
   auto it = reasons.find(name);

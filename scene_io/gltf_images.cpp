@@ -53,12 +53,13 @@ bool load_gltf_image(tinygltf::Image* image, const int index, std::string* err, 
   if (is_webp(bytes, size) ? decode_webp(image, bytes, size)
                            : tinygltf::LoadImageData(image, index, &ignored, warn, width, height, bytes, size, nullptr))
     return true;
-  auto& ctx = *static_cast<ImageLoadContext*>(user);
-  if (ctx.error.empty())
-    ctx.error = fmt::format("image {} ({}) could not be decoded: it is not a PNG, JPEG or WebP image", index,
-                            gltf_image_source(*image));
-  if (err) *err += ctx.error + "\n";
-  return false;
+  // A defect of this image alone: refused only when a texture the scene uses shows it.
+  static_cast<ImageLoadContext*>(user)->undecodable.emplace_back(
+      index, fmt::format("image {} ({}) could not be decoded: it is not a PNG, JPEG or WebP image", index,
+                         gltf_image_source(*image)));
+  image->mimeType = kUndecodableImage;
+  (void)err;
+  return true;
 }
 
 std::string gltf_image_source(const tinygltf::Image& image) {
@@ -79,15 +80,20 @@ bool decode_webp_data_uri(tinygltf::Image& image) {
          decode_webp(&image, bytes.data(), static_cast<int>(bytes.size()));
 }
 
-bool is_ktx2_image(const tinygltf::Image& image) { return image.image.empty() && image.mimeType == "image/ktx2"; }
+bool is_ktx2_image(const tinygltf::Image& image) {
+  return image.image.empty() && (image.mimeType == "image/ktx2" || image.mimeType == kUndecodableImage);
+}
 
-int texture_image(const tinygltf::Model& model, const std::string& file, int index) {
+int texture_image(const tinygltf::Model& model, const std::string& file, int index, const GltfDefects& defects) {
   const tinygltf::Texture& tex = model.textures[index];
   int source = extension_source(tex, "EXT_texture_webp");
-  if (source < 0) source = tex.source;
+  const int images = static_cast<int>(model.images.size());
+  // A WebP source tessera cannot read falls back to `source`, as the extension intends.
+  if (source < 0 || (source < images && tex.source >= 0 && is_ktx2_image(model.images[source]))) source = tex.source;
   if (source >= static_cast<int>(model.images.size()))
     throw SceneLoadError(file, fmt::format("texture {} refers to image {}, but the file has {}", index, source,
                                            count_of(model.images.size(), "image")));
+  if (source >= 0) defects.check_used(fmt::format("image {}", source), file);
   const bool basisu = tex.extensions.count("KHR_texture_basisu") > 0;
   if ((source < 0 && basisu) || (source >= 0 && is_ktx2_image(model.images[source])))
     throw SceneLoadError(file, fmt::format("texture {} has only a KTX2 image (KHR_texture_basisu), which tessera "

@@ -8,11 +8,16 @@
 
 #include <tiny_gltf.h>
 
+#include "scene_io/gltf_defects.h"
+
 namespace tessera {
 
-// What the image callback saw, for the error message after tinygltf gives up.
+// The mimeType of an image tessera cannot decode: left empty, refused when a texture shows it.
+inline constexpr const char* kUndecodableImage = "tessera/undecodable";
+
+// What the image callback saw: the images it could not decode, by index.
 struct ImageLoadContext {
-  std::string error;  // the first image that could not be decoded
+  std::vector<std::pair<int, std::string>> undecodable;
 };
 
 // tinygltf's LoadImageDataFunction; `user` is an ImageLoadContext.
@@ -26,12 +31,12 @@ std::string gltf_image_source(const tinygltf::Image& image);
 // `image`. False when the URI is not one or does not hold a WebP image.
 bool decode_webp_data_uri(tinygltf::Image& image);
 
-// True for a KTX2 image, which load_gltf_image leaves undecoded.
+// True for a KTX2 image, which load_gltf_image leaves undecoded, and for one it could not decode.
 bool is_ktx2_image(const tinygltf::Image& image);
 
 // The image texture `index` shows: EXT_texture_webp's source, else `source` (for
 // KHR_texture_basisu, its fallback). -1 when it has none. Throws SceneLoadError for a
-// texture that has only a KTX2 image.
-int texture_image(const tinygltf::Model& model, const std::string& file, int index);
+// texture that has only a KTX2 image, and the defect of an image it shows.
+int texture_image(const tinygltf::Model& model, const std::string& file, int index, const GltfDefects& defects);
 
 }  // namespace tessera

@@ -17,6 +17,7 @@
 
 #include "scene_io/gltf_accessor.h"
 #include "scene_io/gltf_hierarchy.h"
+#include "scene_io/gltf_instancing.h"
 #include "scene_io/gltf_material.h"
 #include "scene_io/gltf_mesh.h"
 #include "scene_io/gltf_parse.h"
@@ -42,13 +43,13 @@ bool finite_matrix(const glm::mat4& m) {
 
 class Converter {
  public:
-  Converter(const tinygltf::Model& model, const std::string& file, GltfLoadResult& result)
-      : model_(model), file_(file), result_(result), out_(result.scene), warnings_(result.warnings),
-        reader_{model, file} {}
+  Converter(const GltfDocument& document, GltfLoadResult& result)
+      : model_(document.model), file_(document.path), defects_(document.defects), result_(result),
+        out_(result.scene), warnings_(result.warnings), reader_{model_, file_, &defects_, &read_accessors_} {}
 
   void run(const GltfLoadParams& params) {
     check_extensions();
-    out_.materials = convert_materials(model_, file_, warnings_);
+    out_.materials = convert_materials(model_, file_, defects_, warnings_);
     result_.material_variants = read_material_variants(model_, file_);
     if (!params.variant.empty())
       result_.material_variant = choose_material_variant(result_.material_variants, params.variant, file_);
@@ -64,10 +65,27 @@ class Converter {
       result_.morph_meshes += std::any_of(m.primitives.begin(), m.primitives.end(),
                                           [](const tinygltf::Primitive& p) { return !p.targets.empty(); });
     traverse(scene_roots(model_, choose_scene(params.scene), parent_, file_));
+    for (std::string& w : defects_.unused_warnings()) warnings_.push_back(std::move(w));
+    check_unread_accessors();
   }
 
  private:
   [[noreturn]] void fail(const std::string& problem) const { throw SceneLoadError(file_, problem); }
+
+  // The policy for accessors nothing read: what would refuse a used one (NaN, a range past its
+  // bufferView) is a warning. Read as a whole, without the reader's log.
+  void check_unread_accessors() {
+    const AccessorReader whole{model_, file_, &defects_};
+    for (std::size_t i = 0; i < model_.accessors.size(); ++i) {
+      const int components = gltf_component_count(model_.accessors[i].type);
+      if (read_accessors_.count(static_cast<int>(i)) || components == 0) continue;
+      try {
+        whole.floats(static_cast<int>(i), components, "unused");
+      } catch (const SceneLoadError& e) {
+        warnings_.push_back("ignored, as the scene does not use it: " + e.problem());
+      }
+    }
+  }
 
   int steps() const { return static_cast<int>(poses_.size()); }
 
@@ -257,6 +275,7 @@ class Converter {
     if (node.mesh >= static_cast<int>(model_.meshes.size()))
       fail(fmt::format("node {} refers to mesh {}, but the file has {}", index, node.mesh,
                        count_of(model_.meshes.size(), "mesh")));
+    defects_.check_used(fmt::format("mesh {}", node.mesh), file_);
     // A mesh with no triangles (only points or lines) is neither stored nor placed. A morphed
     // or skinned mesh is the node's own (another node may deform it differently).
     const Deformation deform = deformation(node, index);
@@ -272,19 +291,52 @@ class Converter {
     // A skinned mesh is in world space already: the specification ignores its node's transform.
     const std::vector<glm::mat4> placed =
         deform.skin ? std::vector<glm::mat4>(steps(), glm::mat4(1.0f)) : worlds(index);
-    Instance instance{it->second, placed[0], node.name, {}};
+    const std::vector<glm::mat4> locals = read_gpu_instances(node, index, reader_);
+    if (locals.empty()) {
+      place(it->second, placed, node, index, exact_reach(out_.meshes[it->second], placed));
+      return;
+    }
+    // Many placements of one mesh: bounds from its box's corners, not every vertex of each.
+    const Bounds3 box = exact_reach(out_.meshes[it->second], std::vector<glm::mat4>(steps(), glm::mat4(1.0f)));
+    std::vector<glm::mat4> at(steps());
+    for (const glm::mat4& local : locals) {
+      for (int k = 0; k < steps(); ++k) at[k] = placed[k] * local;
+      place(it->second, at, node, index, corner_reach(box, at));
+    }
+  }
+
+  // Puts mesh `slot` at `placed` (one matrix per motion step), reaching `reach`.
+  void place(int slot, const std::vector<glm::mat4>& placed, const tinygltf::Node& node, int index,
+             const Bounds3& reach) {
+    Instance instance{slot, placed[0], node.name, {}};
     if (std::any_of(placed.begin(), placed.end(), [&](const glm::mat4& m) { return m != placed[0]; }))
       instance.motion.assign(placed.begin() + 1, placed.end());
     out_.instances.push_back(std::move(instance));
-    Bounds3 reach;  // finite matrices and positions can still overflow together
-    for (const TriangleMesh& prim : out_.meshes[it->second].primitives)
+    if (!all_finite(reach.lo) || !all_finite(reach.hi))  // finite matrices and positions can still overflow together
+      fail(fmt::format("node {} places mesh {} beyond the range of 32-bit floats", index, node.mesh));
+    out_.bounds.extend(reach);
+  }
+
+  // Where `mesh`'s vertices go under `placed`, at every motion step.
+  Bounds3 exact_reach(const Mesh& mesh, const std::vector<glm::mat4>& placed) const {
+    Bounds3 reach;
+    for (const TriangleMesh& prim : mesh.primitives)
       for (int k = 0; k < steps(); ++k) {
         const auto& positions = k == 0 || !prim.deforms() ? prim.positions : prim.motion_positions[k - 1];
         for (const glm::vec3& p : positions) reach.extend(glm::vec3(placed[k] * glm::vec4(p, 1.0f)));
       }
-    if (!all_finite(reach.lo) || !all_finite(reach.hi))
-      fail(fmt::format("node {} places mesh {} beyond the range of 32-bit floats", index, node.mesh));
-    out_.bounds.extend(reach);
+    return reach;
+  }
+
+  // Where the corners of `box` go under `placed`: a box around the placed mesh.
+  static Bounds3 corner_reach(const Bounds3& box, const std::vector<glm::mat4>& placed) {
+    Bounds3 reach;
+    for (const glm::mat4& m : placed)
+      for (int c = 0; c < 8; ++c) {
+        const glm::vec3 p(c & 1 ? box.hi.x : box.lo.x, c & 2 ? box.hi.y : box.lo.y, c & 4 ? box.hi.z : box.lo.z);
+        reach.extend(glm::vec3(m * glm::vec4(p, 1.0f)));
+      }
+    return reach;
   }
 
   Mesh convert_mesh(int index, const Deformation& deform) {
@@ -301,6 +353,7 @@ class Converter {
       if (prim->material >= static_cast<int>(out_.materials.size()))
         fail(fmt::format("{} refers to material {}, but the file has {}", what, prim->material,
                          count_of(out_.materials.size(), "material")));
+      if (prim->material >= 0) defects_.check_used(fmt::format("material {}", prim->material), file_);
       if (!prim->indices.empty()) mesh.primitives.push_back(std::move(*prim));
     }
     return mesh;
@@ -422,9 +475,11 @@ class Converter {
 
   const tinygltf::Model& model_;
   const std::string& file_;
+  const GltfDefects& defects_;
   GltfLoadResult& result_;
   SceneDescription& out_;
   std::vector<std::string>& warnings_;
+  std::set<int> read_accessors_;  // by reader_, so used (declared before it)
   AccessorReader reader_;
   std::map<int, int> mesh_slot_;  // glTF mesh index (-1 - node for a deformed one) -> index in out_.meshes
   std::vector<int> parent_;  // per node, -1 for roots
@@ -450,7 +505,9 @@ void deduplicate(std::vector<std::string>& warnings) {
 
 GltfDocument read_gltf_from_memory(const std::vector<std::uint8_t>& bytes, const std::string& display_name,
                                    const std::string& base_dir) {
-  return GltfDocument{display_name, parse_gltf(bytes, display_name, base_dir)};
+  GltfDocument document{display_name, {}, {}};
+  document.model = parse_gltf(bytes, display_name, base_dir, document.defects);
+  return document;
 }
 
 GltfDocument read_gltf(const std::string& path) {
@@ -467,7 +524,7 @@ GltfDocument read_gltf(const std::string& path) {
 GltfLoadResult convert_gltf(const GltfDocument& document, const GltfLoadParams& params) {
   GltfLoadResult result;
   result.scene.source_path = document.path;
-  Converter(document.model, document.path, result).run(params);
+  Converter(document, result).run(params);
   deduplicate(result.warnings);
   return result;
 }

@@ -8,6 +8,7 @@
 
 #include "renderer/scene/scene.h"
 #include "scene_io/gltf_animation.h"
+#include "scene_io/gltf_defects.h"
 #include "scene_io/gltf_extensions.h"
 #include "scene_io/gltf_skin.h"
 
@@ -46,6 +47,7 @@ struct GltfLoadResult {
 struct GltfDocument {
   std::string path;  // as given: errors name it
   tinygltf::Model model;
+  GltfDefects defects;  // objects kept as placeholders: refused if used, else warned about
 };
 
 GltfDocument read_gltf(const std::string& path);

@@ -29,7 +29,7 @@ double number_of(const tinygltf::Value& object, const char* key, double fallback
   return object.Get(key).GetNumberAsDouble();
 }
 
-TextureRef texture_ref(const tinygltf::Model& model, const std::string& file, int index,
+TextureRef texture_ref(const tinygltf::Model& model, const std::string& file, const GltfDefects& defects, int index,
                        int texcoord, const tinygltf::ExtensionMap& extensions,
                        const std::string& what, std::vector<std::string>& warnings) {
   TextureRef ref;
@@ -38,7 +38,7 @@ TextureRef texture_ref(const tinygltf::Model& model, const std::string& file, in
     throw SceneLoadError(file, fmt::format("{} refers to texture {}, but the file has {}", what,
                                            index, count_of(model.textures.size(), "texture")));
   const tinygltf::Texture& tex = model.textures[index];
-  const int source = texture_image(model, file, index);
+  const int source = texture_image(model, file, index, defects);
   if (source < 0) {
     warnings.push_back(fmt::format("texture {} has no image tessera can decode; ignored", index));
     return ref;
@@ -72,13 +72,13 @@ TextureRef texture_ref(const tinygltf::Model& model, const std::string& file, in
 }  // namespace
 
 std::vector<Material> convert_materials(const tinygltf::Model& model, const std::string& file,
-                                        std::vector<std::string>& warnings) {
+                                        const GltfDefects& defects, std::vector<std::string>& warnings) {
   std::vector<Material> out;
   for (std::size_t i = 0; i < model.materials.size(); ++i) {
     const tinygltf::Material& m = model.materials[i];
     const std::string what = fmt::format("material {}", i);
     auto ref = [&](const tinygltf::TextureInfo& t, const char* slot) {
-      return texture_ref(model, file, t.index, t.texCoord, t.extensions, what + " " + slot, warnings);
+      return texture_ref(model, file, defects, t.index, t.texCoord, t.extensions, what + " " + slot, warnings);
     };
     Material mat;
     mat.name = m.name;
@@ -90,7 +90,7 @@ std::vector<Material> convert_materials(const tinygltf::Model& model, const std:
     mat.metallic_factor = static_cast<float>(pbr.metallicFactor);
     mat.roughness_factor = static_cast<float>(pbr.roughnessFactor);
     mat.metallic_roughness_texture = ref(pbr.metallicRoughnessTexture, "metallicRoughnessTexture");
-    mat.normal_texture = texture_ref(model, file, m.normalTexture.index, m.normalTexture.texCoord,
+    mat.normal_texture = texture_ref(model, file, defects, m.normalTexture.index, m.normalTexture.texCoord,
                                      m.normalTexture.extensions, what + " normalTexture", warnings);
     mat.normal_scale = static_cast<float>(m.normalTexture.scale);
     if (m.emissiveFactor.size() == 3)
@@ -106,7 +106,7 @@ std::vector<Material> convert_materials(const tinygltf::Model& model, const std:
     read_material_extensions(
         m,
         [&](int index, int texcoord, const tinygltf::ExtensionMap& ext, const std::string& slot) {
-          return texture_ref(model, file, index, texcoord, ext, what + " " + slot, warnings);
+          return texture_ref(model, file, defects, index, texcoord, ext, what + " " + slot, warnings);
         },
         [&](const std::string& problem) { throw SceneLoadError(file, what + ": " + problem); }, mat);
     const bool finite = all_finite((mat.base_color_factor)) &&

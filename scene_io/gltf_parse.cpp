@@ -39,35 +39,58 @@ bool write_whole_file(std::string* err, const std::string&, const std::vector<un
   return false;
 }
 
-// tinygltf only warns about an external image it cannot open; tessera refuses the file.
-void check_external_images(tinygltf::Model& model, const std::string& name,
-                           const std::string& base_dir) {
-  for (std::size_t i = 0; i < model.images.size(); ++i) {
-    tinygltf::Image& image = model.images[i];
-    if (image.image.empty() && decode_webp_data_uri(image)) continue;
-    if (image.uri.rfind("data:image/webp;", 0) == 0)
-      throw SceneLoadError(name, fmt::format("image {} (data URI) could not be decoded: it is not a valid WebP image", i));
-    if (!image.image.empty() || image.uri.empty() || image.bufferView >= 0 || is_ktx2_image(image)) continue;
-    if (image.uri.rfind("data:", 0) == 0)  // a media type tinygltf does not decode
-      throw SceneLoadError(name, fmt::format("image {} has a data URI of media type '{}'; tessera "
-                                             "reads PNG, JPEG and WebP images",
-                                             i, image.uri.substr(5, image.uri.find_first_of(";,") - 5)));
-    std::string why = unreadable_reason(resolve_gltf_uri(base_dir, image.uri));
-    if (why.empty()) why = "it is empty";
-    throw SceneLoadError(name, fmt::format("image {} refers to {}, which cannot be opened: {}", i,
-                                           gltf_image_source(image), why));
-  }
+// Why image `i`, which tinygltf left undecoded, cannot be read; empty when it can (decoded
+// here as WebP, or a KTX2 image whose texture has a fallback).
+std::string unreadable_image(tinygltf::Image& image, std::size_t i, const std::string& base_dir) {
+  if (image.image.empty() && decode_webp_data_uri(image)) return "";
+  if (image.uri.rfind("data:image/webp;", 0) == 0)
+    return fmt::format("image {} (data URI) could not be decoded: it is not a valid WebP image", i);
+  if (!image.image.empty() || image.uri.empty() || image.bufferView >= 0 || is_ktx2_image(image)) return "";
+  if (image.uri.rfind("data:", 0) == 0)  // a media type tinygltf does not decode
+    return fmt::format("image {} has a data URI of media type '{}'; tessera reads PNG, JPEG and WebP images", i,
+                       image.uri.substr(5, image.uri.find_first_of(";,") - 5));
+  if (is_remote_uri(image.uri))
+    return fmt::format("image {}: tessera reads local files only: {}", i, gltf_image_source(image));
+  std::string why = unreadable_reason(resolve_gltf_uri(base_dir, image.uri));
+  if (why.empty()) why = "it is empty";
+  return fmt::format("image {} refers to {}, which cannot be opened: {}", i, gltf_image_source(image), why);
+}
+
+// tinygltf only warns about an external image it cannot open: a defect of the image.
+void check_external_images(tinygltf::Model& model, const std::string& base_dir, GltfDefects& defects) {
+  for (std::size_t i = 0; i < model.images.size(); ++i)
+    if (const std::string why = unreadable_image(model.images[i], i, base_dir); !why.empty()) {
+      defects.add(fmt::format("image {}", i), why);
+      model.images[i].mimeType = kUndecodableImage;
+    }
+}
+
+// The placeholders gltf_prepare.cpp put in: buffers without data are empty again, and
+// indices accessors without a bufferView are the primitives' indices.
+void restore_placeholders(tinygltf::Model& model, const GltfDefects& defects) {
+  for (std::size_t i = 0; i < model.buffers.size(); ++i)
+    if (defects.problems.count(fmt::format("buffer {}", i))) model.buffers[i].data.clear();
+  for (tinygltf::Mesh& mesh : model.meshes)
+    for (tinygltf::Primitive& prim : mesh.primitives)
+      if (auto it = prim.extensions.find(kIndicesWithoutView); it != prim.extensions.end()) {
+        prim.indices = it->second.Get("accessor").GetNumberAsInt();
+        prim.extensions.erase(it);
+      }
 }
 
 }  // namespace
 
 tinygltf::Model parse_gltf(const std::vector<std::uint8_t>& bytes, const std::string& name,
-                           const std::string& base_dir) {
+                           const std::string& base_dir, GltfDefects& defects) {
   GltfContainer container = check_gltf_container(bytes, name);
+  if (container.trailing_bytes > 0)
+    defects.notes.push_back(fmt::format("{} after the end its binary glTF header gives are ignored",
+                                        count_of(container.trailing_bytes, "byte")));
   if (bytes.size() > std::numeric_limits<unsigned>::max())
     throw SceneLoadError(name, "is larger than 4 GiB, more than tinygltf can read");
   // Compressed files: tinygltf reads a rewritten JSON (gltf_prepare.h), in a rebuilt .glb.
-  const std::optional<std::string> prepared = prepare_gltf_json(container.json, name);
+  const std::optional<std::string> prepared =
+      prepare_gltf_json(container.json, name, {container.binary, container.bin_chunk_size}, defects);
   std::vector<std::uint8_t> rebuilt;
   if (prepared) {
     rebuilt = container.binary ? replace_glb_json(bytes, *prepared)
@@ -93,7 +116,6 @@ tinygltf::Model parse_gltf(const std::vector<std::uint8_t>& bytes, const std::st
           : parser.LoadASCIIFromString(&model, &err, &warn,
                                        reinterpret_cast<const char*>(input.data()), size, base_dir);
   if (!ok) {
-    if (!ctx.error.empty()) throw SceneLoadError(name, ctx.error);
     if (err.rfind("[json.exception.", 0) != 0)
       if (auto problem = diagnose_gltf_json({container.json, container.binary,
                                              container.bin_chunk_size, base_dir}))
@@ -103,7 +125,9 @@ tinygltf::Model parse_gltf(const std::vector<std::uint8_t>& bytes, const std::st
   if (model.asset.version.rfind("2.", 0) != 0)
     throw SceneLoadError(name, fmt::format("is glTF version '{}'; tessera reads version 2.x",
                                            model.asset.version));
-  check_external_images(model, name, base_dir);
+  for (const auto& [index, problem] : ctx.undecodable) defects.add(fmt::format("image {}", index), problem);
+  check_external_images(model, base_dir, defects);
+  restore_placeholders(model, defects);
   decode_meshopt_views(model, name);  // first: a Draco stream may sit in a meshopt view
   decode_draco_primitives(model, name);
   return model;

@@ -1,8 +1,12 @@
 #include "scene_io/gltf_prepare.h"
 
+#include <algorithm>
+#include <iterator>
+
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "scene_io/gltf_defects.h"
 #include "scene_io/gltf_extensions.h"
 #include "scene_io/load_error.h"
 
@@ -72,18 +76,130 @@ bool point_draco_indices(Json& j) {
   return changed;
 }
 
+// Why buffer `i` has no data tessera can read, or empty when it has.
+std::string dataless_buffer(const Json& b, std::size_t i, const GltfJsonContext& context) {
+  if (member(b, "uri")) return "";
+  const Json* length = member(b, "byteLength");
+  if (!context.binary) return fmt::format("buffer {} has no uri (only a .glb's buffer 0 may omit it)", i);
+  if (i > 0) return fmt::format("buffer {} has no uri, but only buffer 0 of a .glb may use the BIN chunk", i);
+  if (context.bin_chunk_size == 0)
+    return "buffer 0 has no uri, so its data is the BIN chunk, but the file has no BIN chunk";
+  if (length && length->is_number_unsigned() && length->get<std::uint64_t>() > context.bin_chunk_size)
+    return fmt::format("buffer 0 has byteLength {}, but the BIN chunk holds only {} bytes",
+                       length->get<std::uint64_t>(), context.bin_chunk_size);
+  return "";
+}
+
+// Buffers without data become 4-byte placeholders (gltf_parse.cpp empties them again).
+bool replace_dataless_buffers(Json& j, const GltfJsonContext& context, GltfDefects& defects) {
+  Json* buffers = j.contains("buffers") ? &j["buffers"] : nullptr;
+  if (!buffers || !buffers->is_array()) return false;
+  bool changed = false;
+  for (std::size_t i = 0; i < buffers->size(); ++i) {
+    Json& b = (*buffers)[i];
+    if (!b.is_object() || extension(b, "EXT_meshopt_compression")) continue;  // fill_fallback_buffers' case
+    const std::string problem = dataless_buffer(b, i, context);
+    if (problem.empty()) continue;
+    // Without a uri, a buffer is valid glTF (its data may come from an extension) until used.
+    const bool invalid = context.binary && i == 0;
+    defects.add(fmt::format("buffer {}", i), problem, invalid);
+    b["uri"] = "data:application/octet-stream;base64,AAAAAA==";
+    b["byteLength"] = 4;
+    changed = true;
+  }
+  return changed;
+}
+
+// Accessors tinygltf would refuse for their type become one float zero. (It reads any
+// componentType; AccessorReader refuses a wrong one when the accessor is read.)
+bool replace_unknown_accessors(Json& j, GltfDefects& defects) {
+  static const char* kTypes[] = {"SCALAR", "VEC2", "VEC3", "VEC4", "MAT2", "MAT3", "MAT4"};
+  Json* accessors = j.contains("accessors") ? &j["accessors"] : nullptr;
+  if (!accessors || !accessors->is_array()) return false;
+  bool changed = false;
+  for (std::size_t i = 0; i < accessors->size(); ++i) {
+    Json& a = (*accessors)[i];
+    const Json* type = member(a, "type");
+    std::string problem;
+    if (type && type->is_string() &&
+        std::none_of(std::begin(kTypes), std::end(kTypes), [&](const char* t) { return *type == t; }))
+      problem = fmt::format("accessor {} has unknown type '{}'", i, type->get<std::string>().substr(0, 40));
+    if (problem.empty()) continue;
+    defects.add(fmt::format("accessor {}", i), problem);
+    a = Json{{"componentType", 5126}, {"type", "SCALAR"}, {"count", 1}};
+    changed = true;
+  }
+  return changed;
+}
+
+// An indices accessor without a bufferView (zeros, bar sparse ones) is valid glTF, but
+// tinygltf refuses it: it waits in kIndicesWithoutView.
+bool hand_over_viewless_indices(Json& j) {
+  Json* meshes = j.contains("meshes") ? &j["meshes"] : nullptr;
+  const Json* accessors = member(j, "accessors");
+  if (!meshes || !meshes->is_array() || !accessors || !accessors->is_array()) return false;
+  bool changed = false;
+  for (Json& mesh : *meshes) {
+    if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array()) continue;
+    for (Json& prim : mesh["primitives"]) {
+      const Json* indices = member(prim, "indices");
+      if (!indices || !indices->is_number_unsigned() || indices->get<std::uint64_t>() >= accessors->size()) continue;
+      const Json& a = (*accessors)[indices->get<std::size_t>()];
+      if (!a.is_object() || a.contains("bufferView")) continue;
+      prim["extensions"][kIndicesWithoutView] = Json{{"accessor", *indices}};
+      prim.erase("indices");
+      changed = true;
+    }
+  }
+  return changed;
+}
+
+// Mistakes tinygltf passes over in silence: a mesh without a primitives array (tinygltf reads
+// it as a mesh without primitives), a texture reference of a negative index (read as none).
+void flag_silent_mistakes(const Json& j, GltfDefects& defects) {
+  if (const Json* meshes = member(j, "meshes"); meshes && meshes->is_array())
+    for (std::size_t m = 0; m < meshes->size(); ++m) {
+      const Json* prims = member((*meshes)[m], "primitives");
+      if (!prims || !prims->is_array() || prims->empty())
+        defects.add(fmt::format("mesh {}", m),
+                    fmt::format("mesh {} has {}; glTF requires an array of at least one primitive", m,
+                                !prims ? "no \"primitives\"" : prims->is_array() ? "an empty \"primitives\" array"
+                                                                 : "a \"primitives\" that is not an array"));
+    }
+  const Json* materials = member(j, "materials");
+  if (!materials || !materials->is_array()) return;
+  for (std::size_t m = 0; m < materials->size(); ++m) {
+    std::vector<std::pair<std::string, const Json*>> stack = {{"", &(*materials)[m]}};
+    while (!stack.empty()) {  // every textureInfo, in the core material and its extensions
+      const auto [key, object] = stack.back();
+      stack.pop_back();
+      if (!object->is_object()) continue;
+      const Json* index = member(*object, "index");
+      if (index && index->is_number_integer() && index->get<std::int64_t>() < 0) {
+        defects.add(fmt::format("material {}", m), fmt::format("material {} has {} index {}, which names no texture", m,
+                                                               key, index->get<std::int64_t>()));
+        break;
+      }
+      for (auto it = object->begin(); it != object->end(); ++it) stack.emplace_back(it.key(), &*it);
+    }
+  }
+}
+
 }  // namespace
 
-std::optional<std::string> prepare_gltf_json(std::string_view json, const std::string& name) {
+std::optional<std::string> prepare_gltf_json(std::string_view json, const std::string& name,
+                                             const GltfJsonContext& context, GltfDefects& defects) {
   Json j = Json::parse(json.begin(), json.end(), nullptr, /*allow_exceptions=*/false);
   if (!j.is_object()) return std::nullopt;
   check_required(j, name);
-  const bool compressed = json.find("EXT_meshopt_compression") != std::string_view::npos ||
-                          json.find("KHR_draco_mesh_compression") != std::string_view::npos;
-  if (!compressed) return std::nullopt;
-  const bool fallback = fill_fallback_buffers(j);
-  const bool draco = point_draco_indices(j);
-  if (!fallback && !draco) return std::nullopt;
+  bool changed = false;
+  if (json.find("EXT_meshopt_compression") != std::string_view::npos) changed |= fill_fallback_buffers(j);
+  if (json.find("KHR_draco_mesh_compression") != std::string_view::npos) changed |= point_draco_indices(j);
+  changed |= replace_dataless_buffers(j, context, defects);
+  changed |= replace_unknown_accessors(j, defects);
+  changed |= hand_over_viewless_indices(j);
+  flag_silent_mistakes(j, defects);
+  if (!changed) return std::nullopt;
   return j.dump();
 }
 

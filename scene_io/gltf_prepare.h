@@ -3,7 +3,12 @@
 // - compressed files are made acceptable to tinygltf, which knows neither Draco nor meshopt:
 //   an EXT_meshopt_compression fallback buffer (no data: all its views are compressed) gets a
 //   4-byte placeholder, and a Draco primitive's indices accessor (no bufferView: its data is
-//   in the Draco stream) points at the Draco bufferView until gltf_draco.cpp replaces it.
+//   in the Draco stream) points at the Draco bufferView until gltf_draco.cpp replaces it;
+// - objects that tinygltf would refuse although the file may not use them (docs/reliability.md)
+//   become placeholders, their problem recorded in GltfDefects: a buffer without data (no uri
+//   in a .gltf, or other than buffer 0 in a .glb, or larger than the BIN chunk), an accessor of
+//   an unknown type or componentType; and an indices accessor without a bufferView (allowed:
+//   its indices are zeros, bar sparse ones) is handed over as kIndicesWithoutView.
 #pragma once
 
 #include <cstdint>
@@ -13,9 +18,22 @@
 
 namespace tessera {
 
+struct GltfDefects;
+
+// The primitive extension an indices accessor without a bufferView is moved to, as
+// {"accessor": index}, which tinygltf refuses as `indices`; gltf_parse.cpp moves it back.
+inline constexpr const char* kIndicesWithoutView = "TESSERA_indices_without_bufferView";
+
+// What the JSON sits in: a .glb's BIN chunk size matters to buffer 0.
+struct GltfJsonContext {
+  bool binary = false;
+  std::size_t bin_chunk_size = 0;
+};
+
 // Throws SceneLoadError(display_name, ...) for an unsupported required extension. Returns
 // the rewritten JSON, or nullopt when tinygltf can read `json` as it is (or it is not JSON,
 // which tinygltf then reports).
-std::optional<std::string> prepare_gltf_json(std::string_view json, const std::string& display_name);
+std::optional<std::string> prepare_gltf_json(std::string_view json, const std::string& display_name,
+                                             const GltfJsonContext& context, GltfDefects& defects);
 
 }  // namespace tessera

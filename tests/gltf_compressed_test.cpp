@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <fstream>
+#include <iterator>
 
 #include <draco/attributes/attribute_quantization_transform.h>
 #include <draco/compression/decode.h>
@@ -189,6 +190,17 @@ TEST(GltfWebp, LosslessWebpDecodesToThePngTexels) {
     EXPECT_EQ(decoded.channels, png.channels);
     EXPECT_TRUE(decoded.pixels == png.pixels) << name;
   }
+}
+
+TEST(GltfWebp, UndecodableWebpFallsBackToTheTexturesSource) {
+  std::ifstream in(compressed("boxtextured_webp.gltf"));
+  std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  json.replace(json.find("boxtextured.webp"), 16, "boxtextured.bin");  // not an image
+  const GltfLoadResult r =
+      load_gltf_from_memory({json.begin(), json.end()}, "broken_webp.gltf", test::data_path("compressed"));
+  EXPECT_EQ(r.scene.materials[0].base_color_texture.image, 0);  // the PNG fallback
+  EXPECT_EQ(r.warnings, std::vector<std::string>{"ignored, as the scene does not use it: image 1 (boxtextured.bin) "
+                                                 "could not be decoded: it is not a PNG, JPEG or WebP image"});
 }
 
 TEST(GltfBasisu, FallbackSourceIsUsed) {

@@ -24,4 +24,4 @@ export TESSERA_FUZZ_BASE_DIR="$root/tests/data"
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1}"
 exec "$fuzzer" -max_total_time="$seconds" -max_len=65536 -timeout=10 -rss_limit_mb=2048 \
   -print_final_stats=1 -artifact_prefix="$work/artifacts/" \
-  "$work/corpus" "$root/tests/data" "$root/tests/data/malformed" "$root/tests/data/fuzz-regressions" "$work/seeds"
+  "$work/corpus" "$root/tests/data" "$root/tests/data/malformed" "$root/tests/data/conformance" "$root/tests/data/fuzz-regressions" "$work/seeds"
