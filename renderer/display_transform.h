@@ -21,8 +21,9 @@ const std::vector<std::string>& view_transform_names();
 
 struct DisplayParams {
   ViewTransform view = ViewTransform::filmic;
-  std::string ocio_config;  // an OCIO config file: its display and view instead of `view`
-  std::string ocio_display, ocio_view;  // empty: the config's default display, its default view
+  // (The {} keep DisplayParams{view} free of -Wmissing-field-initializers.)
+  std::string ocio_config{};  // an OCIO config file: its display and view instead of `view`
+  std::string ocio_display{}, ocio_view{};  // empty: the config's default display, its default view
 };
 
 // A display or view the config does not have, an unreadable config: the message names the
