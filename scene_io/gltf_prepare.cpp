@@ -110,6 +110,37 @@ bool replace_dataless_buffers(Json& j, const GltfJsonContext& context, GltfDefec
   return changed;
 }
 
+// tinygltf hands an image's bufferView to the image decoder without checking that the view
+// lies inside its buffer (a buffer replaced by a placeholder above, or a byteLength too small
+// for the view): such an image becomes a defect and its data an undecodable stub, so no
+// decoder reads past the buffer.
+bool replace_images_past_their_buffers(Json& j, GltfDefects& defects) {
+  Json* images = j.contains("images") ? &j["images"] : nullptr;
+  const Json* views = member(j, "bufferViews");
+  const Json* buffers = member(j, "buffers");
+  if (!images || !images->is_array() || !views || !views->is_array() || !buffers || !buffers->is_array()) return false;
+  auto number = [](const Json* v) { return v && v->is_number_unsigned() ? v->get<std::uint64_t>() : 0; };
+  bool changed = false;
+  for (std::size_t i = 0; i < images->size(); ++i) {
+    Json& image = (*images)[i];
+    const Json* view_index = member(image, "bufferView");
+    if (!view_index || !view_index->is_number_unsigned() || view_index->get<std::uint64_t>() >= views->size()) continue;
+    const Json& view = (*views)[view_index->get<std::size_t>()];
+    const Json* buffer_index = member(view, "buffer");
+    if (!buffer_index || !buffer_index->is_number_unsigned() || buffer_index->get<std::uint64_t>() >= buffers->size())
+      continue;
+    const std::uint64_t end = number(member(view, "byteOffset")) + number(member(view, "byteLength"));
+    const std::uint64_t size = number(member((*buffers)[buffer_index->get<std::size_t>()], "byteLength"));
+    if (end <= size) continue;
+    defects.add(fmt::format("image {}", i), fmt::format("image {}'s bufferView {} ends at byte {}, past the {} bytes of "
+                                                        "buffer {}'s data", i, view_index->get<std::uint64_t>(), end,
+                                                        size, buffer_index->get<std::uint64_t>()));
+    image = Json{{"uri", "data:image/png;base64,AAAA"}};  // three bytes no decoder takes for an image
+    changed = true;
+  }
+  return changed;
+}
+
 // Accessors tinygltf would refuse for their type become one float zero. (It reads any
 // componentType; AccessorReader refuses a wrong one when the accessor is read.)
 bool replace_unknown_accessors(Json& j, GltfDefects& defects) {
@@ -196,6 +227,7 @@ std::optional<std::string> prepare_gltf_json(std::string_view json, const std::s
   if (json.find("EXT_meshopt_compression") != std::string_view::npos) changed |= fill_fallback_buffers(j);
   if (json.find("KHR_draco_mesh_compression") != std::string_view::npos) changed |= point_draco_indices(j);
   changed |= replace_dataless_buffers(j, context, defects);
+  changed |= replace_images_past_their_buffers(j, defects);
   changed |= replace_unknown_accessors(j, defects);
   changed |= hand_over_viewless_indices(j);
   flag_silent_mistakes(j, defects);
