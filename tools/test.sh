@@ -36,7 +36,9 @@ fi
 [[ "${TESSERA_SANITIZERS:-1}" == 0 ]] && exit 0
 # The validator and the fuzzer check files, not tessera's code: not run again.
 configure_and_build "$build-asan" "" -- "${sanitizer_flags[@]}" "-DTESSERA_SANITIZE=address;undefined"
-(cd "$build-asan" && ctest --output-on-failure -j "$jobs" -E '^(gltf_validator|fuzz)\.')
+# tools/lsan.supp: fontconfig's process-long caches (the charts' font), not tessera's.
+(cd "$build-asan" && LSAN_OPTIONS="suppressions=$root/tools/lsan.supp ${LSAN_OPTIONS:-}" \
+  ctest --output-on-failure -j "$jobs" -E '^(gltf_validator|fuzz)\.')
 
 # clang: it builds this twice as fast as g++. TBB's own synchronisation is not instrumented;
 # tools/tsan.supp says what that hides and why nothing of tessera's is lost.
