@@ -5,6 +5,8 @@
 
 #include <OpenColorIO/OpenColorIO.h>
 
+#include "renderer/named_enum.h"
+
 namespace tessera {
 
 namespace OCIO = OCIO_NAMESPACE;
@@ -97,12 +99,10 @@ const std::vector<std::string>& view_transform_names() {
   return names;
 }
 
-const char* view_transform_name(ViewTransform view) { return view == ViewTransform::filmic ? "filmic" : "standard"; }
+const char* view_transform_name(ViewTransform view) { return enum_name(view_transform_names(), view); }
 
 ViewTransform parse_view_transform(const std::string& name) {
-  if (name == "filmic") return ViewTransform::filmic;
-  if (name == "standard") return ViewTransform::standard;
-  throw std::invalid_argument("unknown view transform '" + name + "' (filmic or standard)");
+  return parse_enum<ViewTransform>(view_transform_names(), name, "view transform");
 }
 
 float filmic_curve(float x) {
