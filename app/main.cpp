@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "app/command_line.h"
 #include "app/commands.h"
 #include "app/exit_codes.h"
 #include "app/interrupt.h"
@@ -37,18 +38,7 @@ int main(int argc, char** argv) {
   add_bench_command(app, bench);
   add_scaling_command(app, scaling);
   add_denoise_command(app, denoise);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForVersion& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    fmt::print(stderr, "tessera: error: {}\nRun 'tessera --help' or 'tessera COMMAND --help' for usage.\n", e.what());
-    return kExitBadInput;
-  }
+  if (const int code = parse_command_line(app, argc, argv); code >= 0) return code;
   // Under an MPI launcher every rank runs this; a rank that fails ends them all, so that none
   // waits forever for it, and says which rank it was.
   std::unique_ptr<MpiSession> mpi;
