@@ -1,6 +1,7 @@
 // The subcommands of the tessera program, each with one options struct.
 #pragma once
 
+#include <set>
 #include <string>
 #include <vector>
 
@@ -55,6 +56,12 @@ struct RenderOptions {
   float noise_threshold = 0.0f;  // adaptive sampling: 0 off
   int min_spp = 0;  // adaptive sampling: 0 automatic
   bool denoise = false;
+  float resolution_scale = 1.0f;  // scales the width and height (--resolution-scale)
+  bool quick = false;  // --quick: a preset (app/option_rules.h)
+  std::string pixel;  // --pixel X,Y: trace that pixel alone and print its paths
+  std::string look_at;  // --look-at EYE,TARGET,UP (nine numbers)
+  std::string camera_position, camera_target;  // X,Y,Z each
+  std::set<std::string> given;  // the options on the command line, by long name ("--spp")
 };
 
 struct InfoOptions {

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "app/auto_background.h"
+#include "app/camera_options.h"
 #include "app/exit_codes.h"
 #include "app/frame_denoise.h"
 #include "app/memory_check.h"
@@ -64,16 +65,23 @@ void plan_image(const RenderOptions& o, const SceneDescription& scene, const Bou
   RenderSettings& s = plan.settings;
   s.width = o.width;
   s.height = o.height;
+  const Bounds3& bounds = framing ? *framing : scene.bounds;
+  const std::optional<LookAt> look_at = command_line_look_at(o, bounds.empty() ? vec3(0.0f) : bounds.center());
   const Camera* scene_camera = nullptr;
   Camera probe;
-  if (!scene.cameras.empty() || !o.camera.empty()) {
+  if (!look_at && (!scene.cameras.empty() || !o.camera.empty())) {
     probe = choose_camera(scene, o.camera, 16, 9, framing);
     scene_camera = &probe;
   }
   resolve_resolution(scene_camera, s.width, s.height);
+  if (o.resolution_scale != 1.0f) {
+    s.width = std::max(1, static_cast<int>(std::lround(s.width * static_cast<double>(o.resolution_scale))));
+    s.height = std::max(1, static_cast<int>(std::lround(s.height * static_cast<double>(o.resolution_scale))));
+  }
   if (static_cast<double>(s.width) * s.height > (1u << 28))
     throw UsageError(fmt::format("--width {} --height {}: more than 268 million pixels", s.width, s.height));
-  plan.camera = choose_camera(scene, o.camera, s.width, s.height, framing);
+  plan.camera = look_at ? look_at_camera(look_at->eye, look_at->target, look_at->up, s.width, s.height)
+                        : choose_camera(scene, o.camera, s.width, s.height, framing);
   plan.camera_params = {o.fov, o.aperture, o.focus_distance};
   if (!o.crop.empty()) {
     const Tile region = crop_region(o.crop, s.width, s.height);

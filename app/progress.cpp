@@ -17,6 +17,33 @@ std::string format_duration(double seconds) {
   return fmt::format("{:02}:{:02}", s / 60, s % 60);
 }
 
+std::string terminal_progress_line(const ProgressFields& f, int columns) {
+  const std::string pct = fmt::format("{:5.1f}%", 100.0 * f.fraction);
+  const std::string elapsed = format_duration(f.elapsed), eta = format_duration(f.eta);
+  const double rate = f.samples_per_second * 1e-6;
+  const std::string texts[] = {
+      fmt::format("{}  {} elapsed  ETA {}  {:.2f} M samples/s{}", pct, elapsed, eta, rate, f.converged),
+      fmt::format("{}  {} elapsed  ETA {}  {:.2f} M samples/s", pct, elapsed, eta, rate),
+      fmt::format("{}  {}  ETA {}  {:.2f} Ms/s", pct, elapsed, eta, rate),
+      fmt::format("{}  ETA {}", pct, eta),
+      pct,
+  };
+  auto bar = [&](int inner) {
+    const int filled = std::clamp(static_cast<int>(f.fraction * inner), 0, inner);
+    return "[" + std::string(filled, '#') + std::string(inner - filled, '.') + "] ";
+  };
+  constexpr int kWidest = 30, kNarrowest = 10;
+  if (columns <= 0) return f.label + bar(kWidest) + texts[0];
+  const int room = columns - 1;  // the last column left free: some terminals wrap on it
+  for (const std::string& text : texts) {
+    const int inner = std::min(kWidest, room - static_cast<int>(f.label.size() + text.size()) - 3);
+    if (inner >= kNarrowest) return f.label + bar(inner) + text;
+  }
+  for (const std::string& text : texts)
+    if (static_cast<int>(f.label.size() + text.size()) <= room) return f.label + text;
+  return elide_middle(f.label + pct, static_cast<std::size_t>(std::max(room, 0)));
+}
+
 ProgressDisplay::ProgressDisplay(const RenderMonitor& monitor, ProgressOptions options)
     : monitor_(monitor), options_(std::move(options)), terminal_(::isatty(STDERR_FILENO) == 1),
       start_(std::chrono::steady_clock::now()) {
@@ -61,12 +88,8 @@ void ProgressDisplay::draw(bool final_line) {
   if (terminal_ && final_line && options_.erase_when_done) {
     line = "\r\x1b[K";  // clear the bar
   } else if (terminal_) {
-    constexpr int kWidth = 30;
-    const int filled = static_cast<int>(fraction * kWidth);
-    line = fmt::format("\r{}[{}{}] {:5.1f}%  {} elapsed  ETA {}  {:.2f} M samples/s", options_.label,
-                       std::string(filled, '#'), std::string(kWidth - filled, '.'), 100.0 * fraction,
-                       format_duration(elapsed), format_duration(eta), rate * 1e-6);
-    line += converged_text();
+    line = "\r\x1b[K" + terminal_progress_line({options_.label, fraction, elapsed, eta, rate, converged_text()},
+                                               width_.columns());
     if (final_line) line += "\n";
   } else {
     if (final_line) return;  // the summary follows; a log needs no closing bar

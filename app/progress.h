@@ -10,6 +10,7 @@
 #include <string>
 #include <thread>
 
+#include "app/terminal.h"
 #include "renderer/render.h"
 
 namespace tessera {
@@ -37,6 +38,7 @@ class ProgressDisplay {
   const RenderMonitor& monitor_;
   ProgressOptions options_;
   bool terminal_;
+  TerminalWidth width_;
   std::chrono::steady_clock::time_point start_;
   std::mutex mutex_;
   std::condition_variable wake_;
@@ -45,5 +47,17 @@ class ProgressDisplay {
 };
 
 std::string format_duration(double seconds);
+
+// What one progress line shows.
+struct ProgressFields {
+  std::string label;
+  double fraction = 0.0, elapsed = 0.0, eta = -1.0, samples_per_second = 0.0;
+  std::string converged;  // ", 62% of pixels converged", or empty
+};
+
+// The bar for a terminal `columns` wide (0: unknown, the whole line), shorter than it so it
+// never wraps: the converged share, then the words, the rate and the elapsed time drop and
+// the bar narrows (to 10) before it goes; at 40 columns it still shows bar, percent and ETA.
+std::string terminal_progress_line(const ProgressFields& f, int columns);
 
 }  // namespace tessera

@@ -9,6 +9,8 @@
 #include "app/exit_codes.h"
 #include "app/frame_pipeline.h"
 #include "app/frame_sequence.h"
+#include "app/option_rules.h"
+#include "app/pixel_report.h"
 #include "app/progress.h"
 #include "app/render_job.h"
 #include "renderer/render.h"
@@ -20,161 +22,252 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
   cmd->add_option("scene", o.scene_path, "The glTF file to render")->required();
   cmd->add_option("-o,--output", o.output,
                   "Output image; .exr writes float RGBA with AOV layers and render metadata, other "
-                  "extensions (.png .jpg .ppm .hdr .tif ...) go through OpenImageIO [default: SCENE_NAME.exr]");
-  cmd->add_option("--preview", o.preview, "Also write a display-referred preview (sRGB, with --exposure), e.g. out.png");
+                  "extensions (.png .jpg .ppm .hdr .tif ...) go through OpenImageIO [default: SCENE_NAME.exr]")
+      ->group("Output");
+  cmd->add_option("--preview", o.preview, "Also write a display-referred preview (sRGB, with --exposure), e.g. out.png")
+      ->group("Output");
   cmd->add_option("--width", o.width, "Image width in pixels [default: 960, or from --height and the camera's aspect ratio]")
-      ->check(CLI::Range(1, 32768));
+      ->check(CLI::Range(1, 32768))
+      ->group("Output");
   cmd->add_option("--height", o.height, "Image height in pixels [default: from the width and the camera's aspect ratio]")
-      ->check(CLI::Range(1, 32768));
-  cmd->add_option("--spp", o.spp, "Samples per pixel")->check(CLI::Range(1, 1 << 24))->capture_default_str();
-  cmd->add_option("--max-bounces", o.max_bounces, "Most scattering events per path (0: emitters and environment only)")
-      ->check(CLI::Range(0, 1024))->capture_default_str();
-  cmd->add_option("--threads", o.threads, "Render threads [default: all cores]")->check(CLI::Range(1, 1024));
-  cmd->add_option("--tile-size", o.tile_size, "Tile edge in pixels")->check(CLI::Range(1, 4096))->capture_default_str();
-  cmd->add_option("--scheduler", o.scheduler,
-                  "Who renders which tile: tiles (TBB tasks, dynamic, work stealing), chunks (one block of rows "
-                  "per thread, static), counter (threads take the next tile from one shared atomic counter), "
-                  "interleaved (tile i to thread i mod n, static). Same image with each")
-      ->check(CLI::IsMember(scheduler_names()))->capture_default_str();
-  cmd->add_option("--tile-order", o.tile_order,
-                  "Order tiles are handed out: scanline, spiral (from the image centre outwards), hilbert "
-                  "(along a Hilbert curve). Same image with each")
-      ->check(CLI::IsMember(tile_order_names()))->capture_default_str();
-  cmd->add_option("--stats-json", o.stats_json,
-                  "Write the load-balance statistics as JSON: every tile in every sample wave (thread, start, end, "
-                  "samples, rays), every thread (busy, idle), the frame (wall time, efficiency, imbalance, tail)");
-  cmd->add_option("--trace", o.trace,
-                  "Write a Chrome trace-event timeline (FILE.json: one track per thread, one slice per tile) "
-                  "for Perfetto (ui.perfetto.dev) or chrome://tracing");
-  cmd->add_option("--heatmap", o.heatmap,
-                  "Write the CPU time spent on each tile as a colour map with pixel axes and a colour bar in ms or s "
-                  "(FILE.png or any 8-bit image format; FILE.svg for a vector drawing)");
-  cmd->add_option("--seed", o.seed, "Seed of every random number (same seed, same image, for any thread count)")
-      ->check(CLI::Range(0LL, 2147483647LL))->capture_default_str();
-  cmd->add_option("--sampler", o.sampler,
-                  "Sample pattern: sobol (Owen-scrambled Sobol points, stratified in every 2D decision of a path: "
-                  "less noise at the same spp), independent (white noise, for comparison). Same image for any "
-                  "thread count with either")
-      ->check(CLI::IsMember(sampler_names()))->capture_default_str();
-  cmd->add_option("--pixel-filter", o.pixel_filter,
-                  "Pixel reconstruction filter, importance-sampled: blackman-harris (Cycles' default: sharp, "
-                  "little aliasing or edge noise), gaussian, box (each sample inside its own pixel)")
-      ->check(CLI::IsMember(pixel_filter_names()))->capture_default_str();
-  cmd->add_option("--filter-width", o.filter_width, "Pixel filter's whole width in pixels [default: box 1, others 1.5]")
-      ->check(CLI::Range(0.5f, 8.0f));
-  cmd->add_option("--camera", o.camera, "Camera by index or name [default: the scene's first, else an automatic camera framing the scene]");
-  cmd->add_option("--scene", o.scene, "glTF scene by index or name [default: the file's default scene, else 0]");
-  cmd->add_option("--variant", o.variant,
-                  "Material variant (KHR_materials_variants) by name or index: each primitive that maps it "
-                  "gets its mapped material, the others keep theirs [default: the file's default materials]");
-  cmd->add_option("--animation", o.animation,
-                  "Which glTF animations play: a name, an index, all, or none [default: all, together, as viewers play them]");
-  auto* time = cmd->add_option("--time", o.time, "Scene time in seconds at which animated nodes are posed [default: 0]")
-                   ->check(CLI::Range(-1e7, 1e7));
-  auto* frame = cmd->add_option("--frame", o.frame, "Frame number: the scene time is FRAME / --fps (a # run in -o becomes it)")
-                    ->check(CLI::Range(0, 100000000))->excludes(time);
-  cmd->add_option("--frames", o.frames,
-                  "Render frames FIRST to LAST (every STEP-th) as a sequence: -o's run of # becomes each frame's "
-                  "number, zero-padded (shot.####.exr; without #, .#### goes before the extension); --preview and "
-                  "the profile outputs are numbered alike. The file is read once; the automatic camera frames the "
-                  "whole animation")
-                     ->excludes(time)->excludes(frame);
-  cmd->add_flag("--skip-existing", o.skip_existing,
-                "With --frames (or --frame): a frame whose output exists is skipped, except a partial EXR "
-                "(interrupted, time-limited), which is continued where it stopped. Rerun an interrupted "
-                "sequence this way (render-farm friendly)");
-  cmd->add_option("--fps", o.fps, "Frames per second for --frame, --frames and --shutter")
-      ->check(CLI::Range(1e-3, 1e6))->capture_default_str();
-  cmd->add_option("--shutter", o.shutter,
-                  "Motion blur: the shutter is open from OPEN to CLOSE frames around the frame's time, e.g. "
-                  "-0.25,0.25 (a 180-degree shutter); each sample sees the scene at a time in it [default: no blur]");
-  cmd->add_option("--motion-steps", o.motion_steps,
-                  "Motion blur: times across the shutter at which moving objects, deforming meshes and the camera "
-                  "are described (Embree interpolates between them)")
-      ->check(CLI::Range(2, 129))->capture_default_str();
+      ->check(CLI::Range(1, 32768))
+      ->group("Output");
+  cmd->add_option("--resolution-scale", o.resolution_scale,
+                  "Scale the width and height by this (0.5: half each way; after --width/--height or the default)")
+      ->check(CLI::Range(0.001f, 100.0f))->capture_default_str()
+      ->group("Output");
   cmd->add_option("--crop", o.crop,
                   "Render only this region of the frame, X0,X1,Y0,Y1 as fractions of its width and height "
                   "(as pbrt's --cropwindow; 0,0.5,0,1 is the left half): pixels ceil(X0 W) to ceil(X1 W) - 1, "
-                  "the same values as in the whole frame; the EXR keeps the frame as its display window");
-  cmd->add_option("--rank-scheduler", o.rank_scheduler,
-                  "Under mpirun: how each wave's tiles are shared by the ranks: dynamic (batches from one counter, "
-                  "as the tiles are finished) or static (one block per rank, the paper's chunks)")
-      ->check(CLI::IsMember({"dynamic", "static"}))
-      ->capture_default_str();
-  cmd->add_option("--aperture", o.aperture, "Thin-lens aperture diameter in scene units (0: pinhole)")
-      ->check(CLI::Range(0.0f, 1e6f))->capture_default_str();
-  cmd->add_option("--focus-distance", o.focus_distance,
-                  "Distance to the plane in focus [default: what the image centre sees]")
-      ->check(CLI::Range(0.0f, 1e9f));
-  cmd->add_option("--fov", o.fov, "Vertical field of view in degrees, overriding a perspective camera's")
-      ->check(CLI::Range(0.01f, 179.0f));
-  cmd->add_option("--background", o.background,
-                  "Uniform background radiance: R,G,B, or one number for grey, or 'auto': black when the scene's lights can "
-                  "light it (punctual, or untextured emitters giving at least 1% of the power a white background would), "
-                  "else white 1,1,1. Ignored with --envmap")
-      ->capture_default_str();
-  cmd->add_option("--envmap", o.envmap, "Equirectangular environment image (.hdr, .exr, ...) lighting the scene");
-  cmd->add_option("--envmap-scale", o.envmap_scale, "Multiplier on the environment image's radiance")
-      ->check(CLI::Range(0.0f, 1e9f))->capture_default_str();
-  cmd->add_option("--envmap-rotate", o.envmap_rotate, "Rotation of the environment about +Y, degrees")
-      ->capture_default_str();
+                  "the same values as in the whole frame; the EXR keeps the frame as its display window")
+      ->group("Output");
   cmd->add_option("--aov", o.aovs,
                   "Extra EXR layers: albedo (Albedo.RGB), normal (N.XYZ, world space), depth (Z), "
                   "cost (cost.time: CPU seconds spent on the pixel's tile), halves (even.RGB and odd.RGB: "
                   "the means of the even- and odd-numbered samples, also even/odd.Albedo.RGB and even/odd.N.XYZ "
                   "with albedo and normal; spp: each pixel's sample count)")
       ->delimiter(',')
-      ->check(CLI::IsMember({"albedo", "normal", "depth", "cost", "halves"}));
-  cmd->add_flag("--denoise", o.denoise,
-                "Denoise the finished frame (feature-guided regression on the half buffers, albedo and normal, "
-                "which it turns on): RGB is the denoised image, noisy.R/G/B the beauty as rendered; the preview "
-                "shows the denoised one. Not applied to checkpoints or an interrupted frame");
-  cmd->add_flag("--half", o.half, "Write 16-bit half floats to the EXR instead of 32-bit floats");
+      ->check(CLI::IsMember({"albedo", "normal", "depth", "cost", "halves"}))
+      ->group("Output");
+  cmd->add_flag("--half", o.half, "Write 16-bit half floats to the EXR instead of 32-bit floats")
+      ->group("Output");
   cmd->add_option("--exposure", o.exposure, "Exposure in stops applied to non-EXR outputs (display formats: before the view transform; .hdr/.tif/.pfm: linear)")
-      ->check(CLI::Range(-64.0f, 64.0f))->capture_default_str();
+      ->check(CLI::Range(-64.0f, 64.0f))->capture_default_str()
+      ->group("Output");
   cmd->add_option("--view-transform", o.view_transform,
                   "Display formats (PNG, JPEG, ...): filmic (highlights roll off, through OpenColorIO) or standard "
                   "(the clipped value, sRGB encoded). The EXR stays scene-linear")
-      ->check(CLI::IsMember(view_transform_names()))->capture_default_str();
+      ->check(CLI::IsMember(view_transform_names()))->capture_default_str()
+      ->group("Output");
   cmd->add_option("--ocio-config", o.ocio_config,
                   "Display formats: an OpenColorIO config whose view to use instead (from its scene_linear role)")
-      ->check(CLI::ExistingFile);
-  cmd->add_option("--ocio-display", o.ocio_display, "With --ocio-config: the display [default: the config's]");
-  cmd->add_option("--ocio-view", o.ocio_view, "With --ocio-config: the view [default: the display's default view]");
-  cmd->add_flag("-q,--quiet", o.quiet, "No progress and no summary (warnings and errors still print)");
-  cmd->add_option("--time-limit", o.time_limit,
-                  "Stop starting tiles after this many seconds of sampling (the first sample wave always finishes); "
-                  "--spp is then the most a pixel gets. The frame is written, partial and resumable")
-      ->check(CLI::Range(0.001, 1e9));
-  cmd->add_option("--checkpoint", o.checkpoint,
-                  "Rewrite the outputs (atomically) with what is done, between sample waves, at most every this "
-                  "many seconds; an EXR checkpoint can be continued with --resume")
-      ->check(CLI::Range(0.001, 1e9));
-  cmd->add_option("--resume", o.resume,
-                  "Continue a partial or checkpointed EXR written by tessera (same scene file and same options "
-                  "affecting pixels, else refused); the result is the same bit for bit as an uninterrupted render "
-                  "[-o default: this file]");
+      ->check(CLI::ExistingFile)
+      ->group("Output");
+  cmd->add_option("--ocio-display", o.ocio_display, "With --ocio-config: the display [default: the config's]")
+      ->group("Output");
+  cmd->add_option("--ocio-view", o.ocio_view, "With --ocio-config: the view [default: the display's default view]")
+      ->group("Output");
+  cmd->add_flag("-q,--quiet", o.quiet, "No progress and no summary (warnings and errors still print)")
+      ->group("Output");
+  cmd->add_option("--spp", o.spp, "Samples per pixel")->check(CLI::Range(1, 1 << 24))->capture_default_str()
+      ->group("Sampling");
+  cmd->add_flag("--quick", o.quick,
+                "Preset for a fast look: --resolution-scale 0.25 --spp 4 --max-bounces 4 (each unless given)")
+      ->group("Sampling");
+  cmd->add_option("--pixel", o.pixel,
+                  "Trace only pixel X,Y of the frame (0,0: top left) with --spp samples and print its paths on "
+                  "stdout: each vertex (position, material, lobe sampled, pdf, throughput) and what it adds; the "
+                  "first 4 samples in full, then the pixel's mean (what the full render gives it). Writes no image")
+      ->group("Sampling");
+  cmd->add_option("--max-bounces", o.max_bounces, "Most scattering events per path (0: emitters and environment only)")
+      ->check(CLI::Range(0, 1024))->capture_default_str()
+      ->group("Sampling");
+  cmd->add_option("--seed", o.seed, "Seed of every random number (same seed, same image, for any thread count)")
+      ->check(CLI::Range(0LL, 2147483647LL))->capture_default_str()
+      ->group("Sampling");
+  cmd->add_option("--sampler", o.sampler,
+                  "Sample pattern: sobol (Owen-scrambled Sobol points, stratified in every 2D decision of a path: "
+                  "less noise at the same spp), independent (white noise, for comparison). Same image for any "
+                  "thread count with either")
+      ->check(CLI::IsMember(sampler_names()))->capture_default_str()
+      ->group("Sampling");
+  cmd->add_option("--pixel-filter", o.pixel_filter,
+                  "Pixel reconstruction filter, importance-sampled: blackman-harris (Cycles' default: sharp, "
+                  "little aliasing or edge noise), gaussian, box (each sample inside its own pixel)")
+      ->check(CLI::IsMember(pixel_filter_names()))->capture_default_str()
+      ->group("Sampling");
+  cmd->add_option("--filter-width", o.filter_width, "Pixel filter's whole width in pixels [default: box 1, others 1.5]")
+      ->check(CLI::Range(0.5f, 8.0f))
+      ->group("Sampling");
   cmd->add_option("--light-sampling", o.light_sampling,
                   "How emitters and the environment are found: mis (BSDF and light sampling combined), "
                   "bsdf or lights (one strategy alone: noisier, same mean; for verification)")
       ->check(CLI::IsMember({"mis", "bsdf", "lights"}))
-      ->capture_default_str();
+      ->capture_default_str()
+      ->group("Sampling");
   cmd->add_option("--clamp", o.clamp,
                   "Clamp each sample's luminance to this value to tame fireflies (biased: darkens highlights; "
                   "0 = off)")
       ->check(CLI::Range(0.0f, 1e30f))
-      ->capture_default_str();
+      ->capture_default_str()
+      ->group("Sampling");
   cmd->add_option("--noise-threshold", o.noise_threshold,
                   "Adaptive sampling, as Cycles' Noise Threshold: between sample waves a pixel whose estimated "
                   "relative error (from the means of its even- and odd-numbered samples) is below this stops, "
                   "unless a neighbour is still noisy; --spp is then the most. E.g. 0.01. Writes the spp layer "
                   "(0 = off)")
       ->check(CLI::Range(0.0f, 1e6f))
-      ->capture_default_str();
+      ->capture_default_str()
+      ->group("Sampling");
   cmd->add_option("--min-spp", o.min_spp,
                   "Adaptive sampling: samples every pixel gets before it may stop [default: as Cycles, "
                   "max(4, ceil(16 / threshold^0.3)): 64 at 0.01]")
-      ->check(CLI::Range(4, 1 << 24));
+      ->check(CLI::Range(4, 1 << 24))
+      ->group("Sampling");
+  cmd->add_flag("--denoise", o.denoise,
+                "Denoise the finished frame (feature-guided regression on the half buffers, albedo and normal, "
+                "which it turns on): RGB is the denoised image, noisy.R/G/B the beauty as rendered; the preview "
+                "shows the denoised one. Not applied to checkpoints or an interrupted frame")
+      ->group("Sampling");
+  cmd->add_option("--camera", o.camera, "Camera by index or name [default: the scene's first, else an automatic camera framing the scene]")
+      ->group("Scene and camera");
+  cmd->add_option("--scene", o.scene, "glTF scene by index or name [default: the file's default scene, else 0]")
+      ->group("Scene and camera");
+  cmd->add_option("--variant", o.variant,
+                  "Material variant (KHR_materials_variants) by name or index: each primitive that maps it "
+                  "gets its mapped material, the others keep theirs [default: the file's default materials]")
+      ->group("Scene and camera");
+  auto* look_at = cmd->add_option("--look-at", o.look_at,
+                                  "Camera from the command line: EYE,TARGET,UP as nine numbers, e.g. 0,1,5,0,1,0,0,1,0 "
+                                  "(field of view: --fov, else a 50 mm lens on 36 mm film, as the automatic camera)")
+                      ->excludes("--camera")
+                      ->group("Scene and camera");
+  auto* position = cmd->add_option("--camera-position", o.camera_position,
+                                   "Camera from the command line at X,Y,Z looking at --camera-target (up: +Y)")
+                       ->excludes("--camera")->excludes(look_at)
+                       ->group("Scene and camera");
+  cmd->add_option("--camera-target", o.camera_target,
+                  "With --camera-position: the point X,Y,Z the camera looks at [default: the scene's centre]")
+      ->excludes("--camera")->excludes(look_at)->needs(position)
+      ->group("Scene and camera");
+  cmd->add_option("--fov", o.fov, "Vertical field of view in degrees, overriding a perspective camera's")
+      ->check(CLI::Range(0.01f, 179.0f))
+      ->group("Scene and camera");
+  cmd->add_option("--aperture", o.aperture, "Thin-lens aperture diameter in scene units (0: pinhole)")
+      ->check(CLI::Range(0.0f, 1e6f))->capture_default_str()
+      ->group("Scene and camera");
+  cmd->add_option("--focus-distance", o.focus_distance,
+                  "Distance to the plane in focus [default: what the image centre sees]")
+      ->check(CLI::Range(0.0f, 1e9f))
+      ->group("Scene and camera");
+  cmd->add_option("--background", o.background,
+                  "Uniform background radiance: R,G,B, or one number for grey, or 'auto': black when the scene's lights can "
+                  "light it (punctual, or untextured emitters giving at least 1% of the power a white background would), "
+                  "else white 1,1,1. Ignored with --envmap")
+      ->capture_default_str()
+      ->group("Lights");
+  cmd->add_option("--envmap", o.envmap, "Equirectangular environment image (.hdr, .exr, ...) lighting the scene")
+      ->group("Lights");
+  cmd->add_option("--envmap-scale", o.envmap_scale, "Multiplier on the environment image's radiance")
+      ->check(CLI::Range(0.0f, 1e9f))->capture_default_str()
+      ->group("Lights");
+  cmd->add_option("--envmap-rotate", o.envmap_rotate, "Rotation of the environment about +Y, degrees")
+      ->capture_default_str()
+      ->group("Lights");
+  cmd->add_option("--animation", o.animation,
+                  "Which glTF animations play: a name, an index, all, or none [default: all, together, as viewers play them]")
+      ->group("Time and resume");
+  auto* time = cmd->add_option("--time", o.time, "Scene time in seconds at which animated nodes are posed [default: 0]")
+                   ->check(CLI::Range(-1e7, 1e7))
+      ->group("Time and resume");
+  auto* frame = cmd->add_option("--frame", o.frame, "Frame number: the scene time is FRAME / --fps (a # run in -o becomes it)")
+                    ->check(CLI::Range(0, 100000000))->excludes(time)
+      ->group("Time and resume");
+  cmd->add_option("--frames", o.frames,
+                  "Render frames FIRST to LAST (every STEP-th) as a sequence: -o's run of # becomes each frame's "
+                  "number, zero-padded (shot.####.exr; without #, .#### goes before the extension); --preview and "
+                  "the profile outputs are numbered alike. The file is read once; the automatic camera frames the "
+                  "whole animation")
+                     ->excludes(time)->excludes(frame)
+      ->group("Time and resume");
+  cmd->add_option("--fps", o.fps, "Frames per second for --frame, --frames and --shutter")
+      ->check(CLI::Range(1e-3, 1e6))->capture_default_str()
+      ->group("Time and resume");
+  cmd->add_flag("--skip-existing", o.skip_existing,
+                "With --frames (or --frame): a frame whose output exists is skipped, except a partial EXR "
+                "(interrupted, time-limited), which is continued where it stopped. Rerun an interrupted "
+                "sequence this way (render-farm friendly)")
+      ->group("Time and resume");
+  cmd->add_option("--shutter", o.shutter,
+                  "Motion blur: the shutter is open from OPEN to CLOSE frames around the frame's time, e.g. "
+                  "-0.25,0.25 (a 180-degree shutter); each sample sees the scene at a time in it [default: no blur]")
+      ->group("Time and resume");
+  cmd->add_option("--motion-steps", o.motion_steps,
+                  "Motion blur: times across the shutter at which moving objects, deforming meshes and the camera "
+                  "are described (Embree interpolates between them)")
+      ->check(CLI::Range(2, 129))->capture_default_str()
+      ->group("Time and resume");
+  cmd->add_option("--time-limit", o.time_limit,
+                  "Stop starting tiles after this many seconds of sampling (the first sample wave always finishes); "
+                  "--spp is then the most a pixel gets. The frame is written, partial and resumable")
+      ->check(CLI::Range(0.001, 1e9))
+      ->group("Time and resume");
+  cmd->add_option("--checkpoint", o.checkpoint,
+                  "Rewrite the outputs (atomically) with what is done, between sample waves, at most every this "
+                  "many seconds; an EXR checkpoint can be continued with --resume")
+      ->check(CLI::Range(0.001, 1e9))
+      ->group("Time and resume");
+  cmd->add_option("--resume", o.resume,
+                  "Continue a partial or checkpointed EXR written by tessera (same scene file and same options "
+                  "affecting pixels, else refused); the result is the same bit for bit as an uninterrupted render "
+                  "[-o default: this file]")
+      ->group("Time and resume");
+  cmd->add_option("--threads", o.threads, "Render threads [default: all cores]")->check(CLI::Range(1, 1024))
+      ->group("Threads and profiling");
+  cmd->add_option("--tile-size", o.tile_size, "Tile edge in pixels")->check(CLI::Range(1, 4096))->capture_default_str()
+      ->group("Threads and profiling");
+  cmd->add_option("--scheduler", o.scheduler,
+                  "Who renders which tile: tiles (TBB tasks, dynamic, work stealing), chunks (one block of rows "
+                  "per thread, static), counter (threads take the next tile from one shared atomic counter), "
+                  "interleaved (tile i to thread i mod n, static). Same image with each")
+      ->check(CLI::IsMember(scheduler_names()))->capture_default_str()
+      ->group("Threads and profiling");
+  cmd->add_option("--tile-order", o.tile_order,
+                  "Order tiles are handed out: scanline, spiral (from the image centre outwards), hilbert "
+                  "(along a Hilbert curve). Same image with each")
+      ->check(CLI::IsMember(tile_order_names()))->capture_default_str()
+      ->group("Threads and profiling");
+  cmd->add_option("--rank-scheduler", o.rank_scheduler,
+                  "Under mpirun: how each wave's tiles are shared by the ranks: dynamic (batches from one counter, "
+                  "as the tiles are finished) or static (one block per rank, the paper's chunks)")
+      ->check(CLI::IsMember({"dynamic", "static"}))
+      ->capture_default_str()
+      ->group("Threads and profiling");
+  cmd->add_option("--stats-json", o.stats_json,
+                  "Write the load-balance statistics as JSON: every tile in every sample wave (thread, start, end, "
+                  "samples, rays), every thread (busy, idle), the frame (wall time, efficiency, imbalance, tail)")
+      ->group("Threads and profiling");
+  cmd->add_option("--trace", o.trace,
+                  "Write a Chrome trace-event timeline (FILE.json: one track per thread, one slice per tile) "
+                  "for Perfetto (ui.perfetto.dev) or chrome://tracing")
+      ->group("Threads and profiling");
+  cmd->add_option("--heatmap", o.heatmap,
+                  "Write the CPU time spent on each tile as a colour map with pixel axes and a colour bar in ms or s "
+                  "(FILE.png or any 8-bit image format; FILE.svg for a vector drawing)")
+      ->group("Threads and profiling");
+  cmd->footer(
+      "Examples:\n"
+      "  tessera render scenes/cornell-box/cornell-box.gltf --denoise -o cornell.png\n"
+      "      a clean 960x960 picture (--denoise turns on the layers it needs)\n"
+      "  tessera render model.glb --quick --look-at 3,2,3,0,0,0,0,1,0 -o look.png\n"
+      "      a fast low-resolution look from a chosen point\n"
+      "  tessera render shot.glb --frames 1:48 -o shot.####.exr --aov albedo,normal,depth --skip-existing\n"
+      "      an animation as numbered EXRs with AOV layers; rerun to continue where it stopped\n");
+  // What was given, not only its value: for the warnings about options without effect.
+  cmd->callback([cmd, &o] {
+    for (const CLI::Option* option : cmd->get_options())
+      if (option->count() > 0 && !option->get_lnames().empty()) o.given.insert("--" + option->get_lnames()[0]);
+  });
 }
 
 namespace {
@@ -210,12 +303,27 @@ std::vector<PlannedFrame> plan_frames(const RenderOptions& o) {
 
 int run_render(const RenderOptions& options, RankGroup* ranks) {
   RenderOptions o = options;
-  o.quiet = o.quiet || (ranks && ranks->rank() > 0);  // rank 0 speaks for the ranks
+  const bool leader = !ranks || ranks->rank() == 0;
+  o.quiet = o.quiet || !leader;  // rank 0 speaks for the ranks
   if (!o.frames.empty() && !o.resume.empty())
     throw UsageError("--resume: continues one frame; a sequence continues its interrupted frame with --skip-existing");
+  apply_quick_preset(o);
+  check_option_conflicts(o);
+  if (leader)
+    for (const std::string& w : ignored_option_warnings(o, ranks && ranks->size() > 1))
+      fmt::print(stderr, "tessera: warning: {}\n", w);
+  if (!o.pixel.empty()) {
+    if (!leader) return kExitSuccess;  // one process traces the pixel
+    return run_pixel_report(o, read_gltf(o.scene_path));
+  }
   std::vector<PlannedFrame> frames = plan_frames(o);
   for (const PlannedFrame& f : frames) check_frame_files(f.options);  // a bad path costs nothing
   const GltfDocument document = read_gltf(o.scene_path);
+  if (leader && document.model.animations.empty())
+    for (const char* option : {"--time", "--frame", "--frames"})
+      if (o.given.count(option))
+        fmt::print(stderr, "tessera: warning: {}: {} has no animation, so every time shows the same scene\n", option,
+                   o.scene_path);
   Bounds3 framing = animation_bounds(o, document);
   const auto start = std::chrono::steady_clock::now();
   int rendered = 0, skipped = 0;

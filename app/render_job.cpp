@@ -10,6 +10,7 @@
 #include "app/interrupt.h"
 #include "app/profile_outputs.h"
 #include "app/progress.h"
+#include "app/terminal.h"
 #include "app/resume_settings.h"
 #include "renderer/image_output.h"
 #include "renderer/render.h"
@@ -29,35 +30,34 @@ void print_adaptive_summary(const RenderSettings& settings, const RenderResult& 
     most = std::max(most, n);
   }
   const double pixels = static_cast<double>(film.pixel_count());
-  fmt::print(stderr,
-             "tessera: noise threshold {}, min spp {}: {:.0f}% of pixels converged; {:.1f} spp on average "
-             "(fewest {}, most {}), {:.0f}% of the samples of {} spp everywhere\n",
-             settings.adaptive.threshold, adaptive_min_spp(settings.adaptive, settings.spp),
-             100.0 * result.stats.converged_pixels / pixels, total / pixels, result.image.samples_per_pixel, most,
-             100.0 * total / (pixels * settings.spp), settings.spp);
+  print_status(fmt::format(
+      "tessera: noise threshold {}, min spp {}: {:.0f}% of pixels converged; {:.1f} spp on average "
+      "(fewest {}, most {}), {:.0f}% of the samples of {} spp everywhere",
+      settings.adaptive.threshold, adaptive_min_spp(settings.adaptive, settings.spp),
+      100.0 * result.stats.converged_pixels / pixels, total / pixels, result.image.samples_per_pixel, most,
+      100.0 * total / (pixels * settings.spp), settings.spp));
 }
 
 void print_summary(const RenderOptions& o, const std::string& output, const RenderSettings& settings,
                    const RenderResult& result) {
   const RenderStats& s = result.stats;
   const int spp = result.image.samples_per_pixel;
-  fmt::print(stderr,
-             "tessera: {}x{}, {} spp, {}{} threads, tile {}: {:.3f} M samples/s, {:.3f} M rays/s; {} {}: "
-             "efficiency {:.1f}%, imbalance {:.2f}{}\n",
-             settings.width, settings.height, spp, s.ranks > 1 ? fmt::format("{} ranks x ", s.ranks) : "", s.threads,
-             settings.tile_size, s.camera_samples / s.seconds * 1e-6,
-             s.rays / s.seconds * 1e-6, scheduler_name(settings.scheduler), tile_order_name(settings.tile_order),
-             100.0 * s.efficiency, s.imbalance,
-             s.dropped_samples ? fmt::format(", {} non-finite samples dropped", s.dropped_samples) : "");
+  print_status(fmt::format(
+      "tessera: {}x{}, {} spp, {}{} threads, tile {}: {:.3f} M samples/s, {:.3f} M rays/s; {} {}: "
+      "efficiency {:.1f}%, imbalance {:.2f}{}",
+      settings.width, settings.height, spp, s.ranks > 1 ? fmt::format("{} ranks x ", s.ranks) : "", s.threads,
+      settings.tile_size, s.camera_samples / s.seconds * 1e-6, s.rays / s.seconds * 1e-6,
+      scheduler_name(settings.scheduler), tile_order_name(settings.tile_order), 100.0 * s.efficiency, s.imbalance,
+      s.dropped_samples ? fmt::format(", {} non-finite samples dropped", s.dropped_samples) : ""));
   if (settings.adaptive.on()) print_adaptive_summary(settings, result);
   std::string why;
   if (s.cancelled) why = fmt::format("interrupted at {} spp; ", spp);
   else if (s.time_limited) why = fmt::format("time limit reached at {} spp; ", spp);
   if (s.resumed_samples > 0) why = fmt::format("resumed {}; ", o.resume) + why;
   if (spp == 0)
-    fmt::print(stderr, "tessera: interrupted before every pixel had a sample: {} not written\n", output);
+    print_status(fmt::format("tessera: interrupted before every pixel had a sample: {} not written", output));
   else
-    fmt::print(stderr, "tessera: {}wrote {}{}\n", why, output, o.preview.empty() ? "" : " and " + o.preview);
+    print_status(fmt::format("tessera: {}wrote {}{}", why, output, o.preview.empty() ? "" : " and " + o.preview));
 }
 
 }  // namespace
@@ -140,9 +140,10 @@ FrameJobResult render_frame_job(const RenderOptions& options, const FrameJob& jo
         built.updated ? fmt::format("scene updated in {:.2f} s ({} triangles rebuilt, textures kept)", built.seconds,
                                     built.scene->rebuilt_triangles)
                       : fmt::format("BVH and textures {:.2f} s (BVH {:.2f} s)", built.seconds, built.scene->bvh_build_seconds);
-    fmt::print(stderr, "tessera: {}: {} triangles; load {:.2f} s, {}, render {:.2f} s{}; background {}\n", o.scene_path,
-               triangles, load_seconds, build, result.stats.seconds,
-               denoise_seconds > 0.0 ? fmt::format(", denoise {:.2f} s", denoise_seconds) : "", plan.background);
+    print_status(fmt::format("tessera: {}: {} triangles; load {:.2f} s, {}, render {:.2f} s{}; background {}", o.scene_path,
+                             triangles, load_seconds, build, result.stats.seconds,
+                             denoise_seconds > 0.0 ? fmt::format(", denoise {:.2f} s", denoise_seconds) : "",
+                             plan.background));
     print_summary(o, plan.output, settings, result);
   }
   return {interrupts.interrupted()};
@@ -151,7 +152,9 @@ FrameJobResult render_frame_job(const RenderOptions& options, const FrameJob& jo
 Bounds3 animation_bounds(const RenderOptions& o, const GltfDocument& document) {
   Bounds3 bounds;
   // A camera of the file's, or nothing that plays: nothing to frame (and no conversion made).
-  if (!o.camera.empty() || document.model.animations.empty() || o.animation == "none") return bounds;
+  if (!o.camera.empty() || !o.look_at.empty() || (!o.camera_position.empty() && !o.camera_target.empty()) ||
+      document.model.animations.empty() || o.animation == "none")
+    return bounds;
   GltfLoadParams params{o.scene, o.variant, o.animation, 0.0f};
   const GltfLoadResult first = convert_gltf(document, params);
   if (first.playing.empty() || !first.scene.cameras.empty()) return bounds;

@@ -68,17 +68,31 @@ RenderCamera make_camera(const Camera& cam, int width, int height, const CameraP
   return rc;
 }
 
+namespace {
+
+// 36 mm film across the longer image side, 50 mm lens: tan of half the vertical field of view.
+float film_tan_half_y(float aspect) { return aspect >= 1.0f ? 18.0f / (50.0f * aspect) : 18.0f / 50.0f; }
+
+}  // namespace
+
 Camera auto_camera(const Bounds3& bounds, int width, int height) {
   const float aspect = static_cast<float>(width) / static_cast<float>(height);
   const vec3 center = bounds.empty() ? vec3(0.0f) : bounds.center();
   const float radius = bounds.empty() ? 1.0f : std::max(0.5f * glm::length(bounds.diagonal()), 1e-6f);
-  // 36 mm film across the longer image side, 50 mm lens.
-  const float tan_half_y = aspect >= 1.0f ? 18.0f / (50.0f * aspect) : 18.0f / 50.0f;
+  const float tan_half_y = film_tan_half_y(aspect);
   const float tan_half_min = std::min(tan_half_y, tan_half_y * aspect);
   Camera cam;
   cam.name = "automatic";
   cam.yfov = 2.0f * std::atan(tan_half_y);
   cam.camera_to_world = glm::translate(glm::mat4(1.0f), center + vec3(0, 0, radius / tan_half_min));
+  return cam;
+}
+
+Camera look_at_camera(const vec3& eye, const vec3& target, const vec3& up, int width, int height) {
+  Camera cam;
+  cam.name = "look-at";
+  cam.yfov = 2.0f * std::atan(film_tan_half_y(static_cast<float>(width) / static_cast<float>(height)));
+  cam.camera_to_world = glm::inverse(glm::lookAt(eye, target, up));
   return cam;
 }
 

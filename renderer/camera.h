@@ -48,6 +48,11 @@ RenderCamera make_camera(const Camera& cam, int width, int height, const CameraP
 // sphere (a 50 mm lens on a 36 mm film, as the Cycles comparison script sets up).
 Camera auto_camera(const Bounds3& bounds, int width, int height);
 
+// A perspective camera at `eye` looking at `target` with `up` upwards in the image, with the
+// automatic camera's lens (50 mm on 36 mm film across the longer side). The caller checks
+// that eye != target and that up is not along the view.
+Camera look_at_camera(const vec3& eye, const vec3& target, const vec3& up, int width, int height);
+
 // Width / height of the image for a camera: the camera's aspect ratio, else 16:9.
 float default_aspect(const Camera* cam);
 

@@ -218,6 +218,10 @@ void enable_exr_threads() {
 
 bool is_exr_path(const std::string& path) { return lower_extension(path) == ".exr"; }
 
+bool is_display_format_path(const std::string& path) {
+  return !is_exr_path(path) && !is_float_format(lower_extension(path));
+}
+
 void check_output_path(const std::string& path) {
   check_writable_path(path);  // first: "-o /dev/full" is a device, whatever its extension
   const std::string ext = lower_extension(path);

@@ -73,6 +73,10 @@ void check_output_path(const std::string& path);
 // True when `path` names an OpenEXR file (by its extension, in any case).
 bool is_exr_path(const std::string& path);
 
+// True when `path` names a display format (8 bit, through the view transform): neither EXR
+// nor a float format (.hdr, .tif, .tiff, .pfm).
+bool is_display_format_path(const std::string& path);
+
 // Writes `image` to `path`, choosing the format by extension. Throws OutputError.
 void write_image(const std::string& path, const FrameImage& image, const ImageWriteParams& params);
 

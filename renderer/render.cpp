@@ -6,6 +6,7 @@
 
 #include <tbb/info.h>
 
+#include "renderer/camera_sample.h"
 #include "renderer/film_exchange.h"
 #include "renderer/integrator/path_tracer.h"
 #include "renderer/schedulers.h"
@@ -46,20 +47,9 @@ void add_sample(PixelSums& p, int s, const glm::dvec3& radiance, const FirstHit&
 }
 
 // The samples [first_sample, wave.end) of every pixel of one tile.
-void render_tile(const RenderScene& scene, const RenderCamera& camera, const PixelFilter& filter,
-                 const RenderSettings& settings, const Tile& tile, SampleWave wave, Film& film,
-                 TileCounters& counters) {
-  PathTracerParams params;
-  params.max_bounces = settings.max_bounces;
-  params.light_sampling = settings.light_sampling;
-  params.clamp = settings.clamp;
-  const vec3 forward = camera.forward();
-  // Motion blur: each camera sample draws its time, after the film and lens positions. A
-  // scene where nothing moves draws none, so its numbers and image stay what they were.
-  const bool camera_moves = camera.moves(), timed = scene.moves() || camera_moves;
+void render_tile(const CameraSampler& sampler, const RenderSettings& settings, const Tile& tile, SampleWave wave,
+                 Film& film, TileCounters& counters) {
   const FrameWindow& window = settings.window;
-  const float inv_w = 1.0f / (window.cropped() ? window.full_width : settings.width);
-  const float inv_h = 1.0f / (window.cropped() ? window.full_height : settings.height);
   for (int y = tile.y0; y < tile.y1; ++y) {
     for (int x = tile.x0; x < tile.x1; ++x) {
       const int begin = static_cast<int>(first_sample(film, x, y, wave));
@@ -67,20 +57,12 @@ void render_tile(const RenderScene& scene, const RenderCamera& camera, const Pix
       const int fx = x + window.x, fy = y + window.y;  // in the frame: what the samples depend on
       PixelSums sums;
       for (int s = begin; s < wave.end; ++s) {
-        Sampler rng(settings.sampler, fx, fy, s, settings.seed);
-        const vec2 at = filter.sample(rng.next2());
-        const vec2 lens = rng.next2();
-        const float time = timed ? rng.next() : 0.0f;
-        const Ray ray = camera.generate_ray({(fx + at.x) * inv_w, (fy + at.y) * inv_h}, lens, time);
-        if (!is_finite(ray.origin) || !is_finite(ray.direction)) {  // a degenerate camera: Embree
-          ++counters.path.dropped;                                 // would abort on such a ray
+        const CameraSampleResult r = sampler.sample(fx, fy, s, counters.path);
+        if (!r.valid) {
           ++sums.samples;
           continue;
         }
-        FirstHit first;
-        const glm::dvec3 radiance(trace_path(scene, params, ray, rng, first, counters.path));
-        const vec3 axis = camera_moves ? -vec3(camera.camera_to_world_at(time)[2]) : forward;
-        add_sample(sums, s, radiance, first, first.distance * glm::dot(ray.direction, axis));
+        add_sample(sums, s, glm::dvec3(r.radiance), r.first, r.depth);
       }
       film.add(x, y, sums);
       counters.samples += wave.end - begin;
@@ -187,7 +169,7 @@ RenderResult render_frame(const RenderScene& scene, const RenderCamera& camera,
   auto all_stopped = [&] { return settings.ranks ? settings.ranks->any(stopped()) : stopped(); };
   // A distributed render: every rank's samples and dropped samples, summed after each wave.
   std::uint64_t cluster_samples = 0, cluster_dropped = film.state().dropped;
-  const PixelFilter filter(settings.filter);
+  const CameraSampler sampler(scene, camera, settings);
   WaveRunner runner(plan);
   for (std::size_t w = 0; w < waves.size(); ++w) {
     if (wave_already_done(film, waves[w], min_spp)) continue;  // resumed past it
@@ -200,7 +182,7 @@ RenderResult render_frame(const RenderScene& scene, const RenderCamera& camera,
       run.start = recorder.now();
       run.cpu = ProfileRecorder::thread_cpu_seconds();
       TileCounters c;
-      render_tile(scene, camera, filter, settings, plan.items[i].rect, waves[w], film, c);
+      render_tile(sampler, settings, plan.items[i].rect, waves[w], film, c);
       run.cpu = ProfileRecorder::thread_cpu_seconds() - run.cpu;
       run.end = recorder.now();
       run.samples = c.samples;

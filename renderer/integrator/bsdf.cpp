@@ -267,6 +267,12 @@ float GltfBsdf::coat_pdf(const vec3& wo, const vec3& wi) const {
   return coat_ggx_.visible_pdf(o, h) / (4.0f * glm::dot(o, h));
 }
 
+const char* GltfBsdf::lobe_name(int lobe) {
+  static const char* const kNames[] = {"diffuse", "diffuse transmission", "specular", "multiple scattering",
+                                       "transmission", "sheen", "clearcoat"};
+  return lobe >= 0 && lobe < kLobeCount ? kNames[lobe] : "none";
+}
+
 float GltfBsdf::lobe_pdf(int lobe, const vec3& wo, const vec3& wi) const {
   switch (lobe) {
     case kDiffuse:
@@ -305,6 +311,7 @@ bool GltfBsdf::sample(const vec3& wo, float u_lobe, const vec2& u, BsdfSample& s
   int lobe = 0;
   for (float acc = weight_[0]; lobe < kLobeCount - 1 && u_lobe >= acc; acc += weight_[++lobe]) {}
   if (weight_[lobe] <= 0.0f) return false;
+  s.lobe = lobe;
   switch (lobe) {
     case kDiffuse:
     case kSheen: s.wi = sample_cosine_hemisphere(u); break;

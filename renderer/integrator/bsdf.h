@@ -53,6 +53,7 @@ struct BsdfSample {
   // surface were not there, with f |cos| / pdf as its weight; light sampling reaches light
   // through it by the same transmittance (straight_transmittance).
   bool passthrough = false;
+  int lobe = -1;  // the GltfBsdf::Lobe sampled (for --pixel's path printout)
 };
 
 // Cosine-weighted direction on the upper hemisphere (Malley's method).
@@ -85,6 +86,7 @@ class GltfBsdf {
   // the compensated interface that is not reflected, under the sheen and the coat.
   vec3 straight_transmittance() const { return straight_; }
   float lobe_probability(Lobe lobe) const { return weight_[lobe]; }
+  static const char* lobe_name(int lobe);  // "diffuse", "specular", ...
 
  private:
   vec3 dielectric_fresnel(float cos_oh) const {  // s * F for the dielectric layer

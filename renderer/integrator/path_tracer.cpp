@@ -148,7 +148,7 @@ bool features_look_through(const ShadingPoint& sp) {
 }  // namespace
 
 vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ray,
-                Sampler& rng, FirstHit& first, PathCounters& counters) {
+                Sampler& rng, FirstHit& first, PathCounters& counters, PathRecord* record) {
   vec3 radiance(0.0f), throughput(1.0f);
   vec3 absorption(0.0f);  // of the volume the ray travels in (Beer-Lambert); 0 = none
   float bsdf_pdf = 0.0f;  // solid-angle pdf of the direction that led here; 0 = camera ray
@@ -189,11 +189,17 @@ vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ra
                                ? strategy_weight(mode, false, bsdf_pdf, scene.environment.pdf(ray.direction))
                                : 1.0f;
       radiance += throughput * scene.environment.radiance(ray.direction) * weight;
+      if (record) record->escaped = throughput * scene.environment.radiance(ray.direction) * weight, record->end = "left the scene";
       if (features_pending && (bounce > 0 || passes > 0)) first.albedo = feature_weight * scene.environment.radiance(ray.direction);
       break;
     }
     SurfaceHit s = scene.geometry->surface(ray, hit);
     ShadingPoint sp = scene.materials.evaluate(s);
+    PathVertex* vertex = nullptr;
+    if (record) {
+      record->vertices.push_back({s.p, s.ns, s.material, throughput});
+      vertex = &record->vertices.back();
+    }
     if ((glm::dot(s.ng, ray.direction) < 0.0f || sp.double_sided) && sp.emission != vec3(0.0f)) {
       // Light sampling could have found this point too: weigh the two strategies.
       SurfaceHit from_vertex = s;
@@ -203,17 +209,23 @@ vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ra
               ? strategy_weight(mode, false, bsdf_pdf, scene.area_lights->pdf(hit, from_vertex, ray.direction))
               : 1.0f;
       radiance += throughput * sp.emission * weight;
+      if (vertex) vertex->emitted = throughput * sp.emission * weight;
     }
     if (sp.unlit) {  // KHR_materials_unlit: the colour is what the surface shows
       radiance += throughput * sp.base_color;
       record_features(sp, s);
+      if (vertex) vertex->emitted += throughput * sp.base_color, record->end = "unlit surface";
       break;
     }
     const bool front = orient(s, sp, ray.direction);
+    if (vertex) vertex->normal = s.ns;
     record_features(sp, s);
     features_pending = features_pending && features_look_through(sp);
     const bool last = bounce >= params.max_bounces;
-    if (last && !(sp.thin_walled && sp.transmission > 0.0f)) break;
+    if (last && !(sp.thin_walled && sp.transmission > 0.0f)) {
+      if (record) record->end = "max bounces";
+      break;
+    }
 
     if (sp.dispersion > 0.0f && sp.transmission > 0.0f) {  // KHR_materials_dispersion
       if (wavelength == 0.0f) {
@@ -229,17 +241,29 @@ vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ra
     const ShadingContext ctx{s, frame, bsdf, wo_local, time};
     if (last) {  // no scattering left, but the straight pass is none: it goes on, weighted
       throughput *= bsdf.straight_transmittance();
+      if (vertex) vertex->lobe = "straight pass";
       if (features_pending) feature_weight *= bsdf.straight_transmittance();
       if (throughput == vec3(0.0f) || !pass_straight(ctx.origin_towards(ray.direction))) break;
       continue;
     }
-    if (!scene.description.lights.empty()) radiance += throughput * punctual_light_contribution(scene, ctx, counters);
-    if (light_sampling) radiance += throughput * area_light_contribution(scene, ctx, rng, mode, counters);
-    if (environment_sampling) radiance += throughput * environment_contribution(scene, ctx, rng, mode, counters);
+    vec3 direct(0.0f);  // what light sampling adds, summed for the record only
+    auto add_direct = [&](const vec3& light) {
+      const vec3 added = throughput * light;
+      radiance += added;
+      direct += added;
+    };
+    if (!scene.description.lights.empty()) add_direct(punctual_light_contribution(scene, ctx, counters));
+    if (light_sampling) add_direct(area_light_contribution(scene, ctx, rng, mode, counters));
+    if (environment_sampling) add_direct(environment_contribution(scene, ctx, rng, mode, counters));
+    if (vertex) vertex->direct = direct;
 
     BsdfSample bs;
     const vec3 u = rng.next3();  // the direction (x, y) and the lobe (z), stratified together
-    if (!bsdf.sample(wo_local, u.z, {u.x, u.y}, bs)) break;
+    if (!bsdf.sample(wo_local, u.z, {u.x, u.y}, bs)) {
+      if (record) record->end = "no direction sampled";
+      break;
+    }
+    if (vertex) vertex->lobe = bs.passthrough ? "straight pass" : GltfBsdf::lobe_name(bs.lobe), vertex->pdf = bs.pdf;
     throughput *= bs.f * (std::fabs(bs.wi.z) / bs.pdf);
     if (features_pending) feature_weight *= bs.f * (std::fabs(bs.wi.z) / bs.pdf);
     if (bs.passthrough) {
@@ -247,13 +271,19 @@ vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ra
       continue;
     }
     const vec3 wi = frame.to_world(bs.wi);
-    if ((glm::dot(wi, s.ng) > 0.0f) == bs.transmitted) break;  // shading and geometry disagree
+    if ((glm::dot(wi, s.ng) > 0.0f) == bs.transmitted) {  // shading and geometry disagree
+      if (record) record->end = "direction below the surface";
+      break;
+    }
     bsdf_pdf = bs.pdf;
     passed = 0.0f;
     if (bs.transmitted && !sp.thin_walled) absorption = front ? sp.absorption : vec3(0.0f);
     if (++bounce >= params.roulette_start) {
       const float survive = std::fmin(1.0f, max_component(throughput));
-      if (rng.next() >= survive) break;
+      if (rng.next() >= survive) {
+        if (record) record->end = "Russian roulette";
+        break;
+      }
       throughput /= survive;
     }
     ray = Ray{ctx.origin_towards(wi), wi, 0.0f, std::numeric_limits<float>::infinity(), time};

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
+#include <vector>
 
 #include "renderer/ray.h"
 #include "renderer/render_scene.h"
@@ -34,9 +36,27 @@ struct PathCounters {
   std::uint64_t dropped = 0;  // samples dropped for a non-finite value
 };
 
+// A path as it was traced (--pixel prints it): each surface it met, and what each added to
+// the sample's radiance (already multiplied by the throughput).
+struct PathVertex {
+  vec3 position{0.0f}, normal{0.0f};  // the shading normal, towards the arriving ray
+  int material = -1;  // index into the scene's materials
+  vec3 throughput{1.0f};  // the path's weight arriving here
+  vec3 emitted{0.0f};  // emission seen here (MIS-weighted); an unlit surface's colour
+  vec3 direct{0.0f};  // light sampled from here: punctual lights, emitters, the environment
+  std::string lobe;  // the BSDF lobe sampled to leave ("diffuse", ...; "straight pass"); empty: ended
+  float pdf = 0.0f;  // of the sampled direction, per solid angle (a straight pass: its probability)
+};
+struct PathRecord {
+  std::vector<PathVertex> vertices;
+  vec3 escaped{0.0f};  // the background or environment reached on leaving the scene
+  std::string end;  // why the path ended ("left the scene", "max bounces", ...)
+};
+
 // Radiance arriving along `ray`, every ray of the path at ray.time. Never returns a
-// non-finite value: such a sample is counted in counters.dropped and returns zero.
+// non-finite value: such a sample is counted in counters.dropped and returns zero. `record`
+// (null when rendering) receives the path's vertices; the radiance is the same either way.
 vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ray,
-                Sampler& rng, FirstHit& first, PathCounters& counters);
+                Sampler& rng, FirstHit& first, PathCounters& counters, PathRecord* record = nullptr);
 
 }  // namespace tessera
