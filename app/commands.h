@@ -68,6 +68,7 @@ struct InfoOptions {
   std::string scene_path;
   std::string scene;
   double fps = 24.0;  // for the animations' frame range
+  bool json = false;  // --json: the same facts as one JSON document
 };
 
 struct BenchOptions {

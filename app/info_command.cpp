@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "app/commands.h"
 #include "app/exit_codes.h"
@@ -18,9 +19,13 @@ void add_info_command(CLI::App& app, InfoOptions& o) {
   cmd->add_option("--scene", o.scene, "glTF scene by index or name [default: the file's default scene, else 0]");
   cmd->add_option("--fps", o.fps, "Frames per second for the animations' frame range")
       ->check(CLI::Range(1e-3, 1e6))->capture_default_str();
+  cmd->add_flag("--json", o.json, "Print the same facts as one JSON document, for scripts (docs/usage.md lists its fields)");
 }
 
 namespace {
+
+const char* const kLightTypes[] = {"point", "spot", "directional"};
+const char* const kChannelPaths[] = {"translation", "rotation", "scale", "weights"};
 
 std::string extension_list(const std::vector<std::string>& names) {
   if (names.empty()) return "none";
@@ -39,13 +44,12 @@ void print_animations(const std::vector<Animation>& animations, double fps) {
   fmt::print("animations  {} (render --animation NAME or INDEX, --time S or --frame N), frames {}..{} at {:g} fps\n",
              animations.size(), static_cast<long long>(std::floor(start * fps)),
              static_cast<long long>(std::ceil(end * fps)), fps);
-  static const char* kPaths[] = {"translation", "rotation", "scale", "weights"};
   for (std::size_t i = 0; i < animations.size(); ++i) {
     const Animation& a = animations[i];
     std::string paths;
-    for (const char* p : kPaths) {
+    for (const char* p : kChannelPaths) {
       int n = 0;
-      for (const AnimationChannel& c : a.channels) n += std::string(kPaths[static_cast<int>(c.path)]) == p;
+      for (const AnimationChannel& c : a.channels) n += std::string(kChannelPaths[static_cast<int>(c.path)]) == p;
       if (n > 0) paths += fmt::format("{}{} {}", paths.empty() ? "" : ", ", n, p);
     }
     fmt::print("  {}: '{}' {} channel{} ({}), {:.4g}..{:.4g} s\n", i, a.name, a.channels.size(),
@@ -53,26 +57,110 @@ void print_animations(const std::vector<Animation>& animations, double fps) {
   }
 }
 
+// The numbers both the text and the JSON report.
+struct SceneCounts {
+  std::uint64_t unique = 0, placed = 0, primitives = 0;
+  std::size_t textured = 0;
+};
+
+SceneCounts count_scene(const SceneDescription& s) {
+  SceneCounts c;
+  for (const Mesh& m : s.meshes) {
+    c.primitives += m.primitives.size();
+    for (const TriangleMesh& p : m.primitives) c.unique += p.triangle_count();
+  }
+  for (const Instance& inst : s.instances)
+    for (const TriangleMesh& p : s.meshes[inst.mesh].primitives) c.placed += p.triangle_count();
+  for (const Image& img : s.images) c.textured += img.width > 0;
+  return c;
+}
+
+nlohmann::json vec_json(const glm::vec3& v) { return {v.x, v.y, v.z}; }
+
+nlohmann::json extensions_json(const std::vector<std::string>& names) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const std::string& n : names) out.push_back({{"name", n}, {"status", describe_extension_status(n)}});
+  return out;
+}
+
+nlohmann::json animations_json(const std::vector<Animation>& animations, double fps) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const Animation& a : animations) {
+    nlohmann::json paths = nlohmann::json::object();
+    for (const AnimationChannel& c : a.channels) {
+      nlohmann::json& n = paths[kChannelPaths[static_cast<int>(c.path)]];
+      n = n.is_null() ? 1 : n.get<int>() + 1;
+    }
+    out.push_back({{"name", a.name}, {"channels", a.channels.size()}, {"paths", paths}, {"start", a.start},
+                   {"end", a.end}, {"first_frame", static_cast<long long>(std::floor(a.start * fps))},
+                   {"last_frame", static_cast<long long>(std::ceil(a.end * fps))}});
+  }
+  return out;
+}
+
+nlohmann::json cameras_json(const std::vector<Camera>& cameras) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const Camera& c : cameras) {
+    if (c.projection == Camera::Projection::Perspective)
+      out.push_back({{"name", c.name}, {"projection", "perspective"}, {"yfov_degrees", glm::degrees(c.yfov)},
+                     {"aspect_ratio", c.aspect_ratio > 0 ? nlohmann::json(c.aspect_ratio) : nlohmann::json()}});
+    else
+      out.push_back({{"name", c.name}, {"projection", "orthographic"}, {"xmag", c.xmag}, {"ymag", c.ymag}});
+  }
+  return out;
+}
+
+// The facts `info` prints, as one JSON document; the indices are the arrays' (what --camera,
+// --variant and --animation take).
+void print_info_json(const InfoOptions& o, const GltfLoadResult& loaded) {
+  const SceneDescription& s = loaded.scene;
+  const SceneCounts c = count_scene(s);
+  nlohmann::json lights = nlohmann::json::array();
+  for (const PunctualLight& l : s.lights)
+    lights.push_back({{"name", l.name}, {"type", kLightTypes[static_cast<int>(l.type)]}, {"intensity", l.intensity},
+                      {"unit", l.type == PunctualLight::Type::Directional ? "lux" : "cd"}});
+  nlohmann::json skins = nlohmann::json::array();
+  for (const Skin& k : loaded.skins)
+    skins.push_back({{"name", k.name}, {"joints", k.joints.size()},
+                     {"skeleton", k.skeleton >= 0 ? nlohmann::json(k.skeleton) : nlohmann::json()}});
+  const nlohmann::json doc = {
+      {"file", o.scene_path},
+      {"scene", s.scene_name.empty() ? nlohmann::json() : nlohmann::json(s.scene_name)},
+      {"triangles", {{"unique", c.unique}, {"instanced", c.placed}}},
+      {"meshes", {{"count", s.meshes.size()}, {"primitives", c.primitives}, {"placements", s.instances.size()}}},
+      {"materials", s.materials.size()},
+      {"variants", loaded.material_variants},
+      {"animations", animations_json(loaded.animations, o.fps)},
+      {"fps", o.fps},
+      {"morph_meshes", loaded.morph_meshes},
+      {"skins", skins},
+      {"textures", c.textured},
+      {"cameras", cameras_json(s.cameras)},
+      {"lights", {{"punctual", lights}, {"emissive_triangles", emissive_triangle_count(s)}}},
+      {"bounds", s.bounds.empty() ? nlohmann::json()
+                                  : nlohmann::json{{"min", vec_json(s.bounds.lo)}, {"max", vec_json(s.bounds.hi)}}},
+      {"extensions", {{"used", extensions_json(s.extensions_used)}, {"required", extensions_json(s.extensions_required)}}},
+      {"warnings", loaded.warnings},
+  };
+  fmt::print("{}\n", doc.dump(2));
+}
+
 }  // namespace
 
 int run_info(const InfoOptions& o) {
   GltfLoadResult loaded = load_gltf(o.scene_path, {o.scene});
   for (const std::string& w : loaded.warnings) fmt::print(stderr, "tessera: warning: {}: {}\n", o.scene_path, w);
-  const SceneDescription& s = loaded.scene;
-  std::uint64_t unique = 0, placed = 0, primitives = 0;
-  for (const Mesh& m : s.meshes) {
-    primitives += m.primitives.size();
-    for (const TriangleMesh& p : m.primitives) unique += p.triangle_count();
+  if (o.json) {
+    print_info_json(o, loaded);
+    return kExitSuccess;
   }
-  for (const Instance& inst : s.instances)
-    for (const TriangleMesh& p : s.meshes[inst.mesh].primitives) placed += p.triangle_count();
-  std::size_t textured = 0;
-  for (const Image& img : s.images) textured += img.width > 0;
+  const SceneDescription& s = loaded.scene;
+  const SceneCounts counts = count_scene(s);
 
   fmt::print("file        {}\n", o.scene_path);
   fmt::print("scene       {}\n", s.scene_name.empty() ? "(all root nodes)" : s.scene_name);
-  fmt::print("triangles   {} unique, {} instanced (as placed in the scene)\n", unique, placed);
-  fmt::print("meshes      {} ({} primitives), placed {} times\n", s.meshes.size(), primitives, s.instances.size());
+  fmt::print("triangles   {} unique, {} instanced (as placed in the scene)\n", counts.unique, counts.placed);
+  fmt::print("meshes      {} ({} primitives), placed {} times\n", s.meshes.size(), counts.primitives, s.instances.size());
   fmt::print("materials   {}\n", s.materials.size());
   if (!loaded.material_variants.empty()) {  // KHR_materials_variants: render --variant NAME|INDEX
     fmt::print("variants    {} (render --variant NAME or INDEX)\n", loaded.material_variants.size());
@@ -89,7 +177,7 @@ int run_info(const InfoOptions& o) {
                  k.skeleton >= 0 ? fmt::format(", skeleton node {}", k.skeleton) : "");
     }
   }
-  fmt::print("textures    {} images\n", textured);
+  fmt::print("textures    {} images\n", counts.textured);
   fmt::print("cameras     {}\n", s.cameras.size());
   for (std::size_t i = 0; i < s.cameras.size(); ++i) {
     const Camera& c = s.cameras[i];
@@ -100,7 +188,6 @@ int run_info(const InfoOptions& o) {
       fmt::print("  {}: '{}' orthographic, xmag {:.4g}, ymag {:.4g}\n", i, c.name, c.xmag, c.ymag);
   }
   fmt::print("lights      {} punctual, {} emissive triangles\n", s.lights.size(), emissive_triangle_count(s));
-  static const char* kLightTypes[] = {"point", "spot", "directional"};
   for (std::size_t i = 0; i < s.lights.size(); ++i)
     fmt::print("  {}: '{}' {}, intensity {:.4g} {}\n", i, s.lights[i].name, kLightTypes[static_cast<int>(s.lights[i].type)],
                s.lights[i].intensity, s.lights[i].type == PunctualLight::Type::Directional ? "lux" : "cd");
