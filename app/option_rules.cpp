@@ -14,6 +14,14 @@ namespace {
 
 bool given(const RenderOptions& o, const char* name) { return o.given.count(name) > 0; }
 
+// Whether two paths name one file, which need not exist yet ("a.exr" and "./a.exr").
+bool same_file(const std::string& a, const std::string& b) {
+  auto normal = [](const std::string& p) {
+    return std::filesystem::weakly_canonical(std::filesystem::absolute(p)).lexically_normal();
+  };
+  return normal(a) == normal(b);
+}
+
 // The image files a render writes: -o (or its default) and --preview.
 std::vector<std::string> image_outputs(const RenderOptions& o) {
   std::vector<std::string> files{frame_output_path(o)};
@@ -54,8 +62,7 @@ void apply_quick_preset(RenderOptions& o) {
 void check_option_conflicts(const RenderOptions& o) {
   if (given(o, "--view-transform") && given(o, "--ocio-config"))
     throw UsageError("--view-transform and --ocio-config both choose the view of display formats: give one");
-  if (!o.preview.empty() &&
-      std::filesystem::weakly_canonical(o.preview) == std::filesystem::weakly_canonical(frame_output_path(o)))
+  if (!o.preview.empty() && same_file(o.preview, frame_output_path(o)))
     throw UsageError(fmt::format("--preview {}: is the -o file too; give another name", o.preview));
   if (!o.pixel.empty())
     for (const char* name : {"--frames", "--resume", "--crop"})
