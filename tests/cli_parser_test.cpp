@@ -71,12 +71,7 @@ INSTANTIATE_TEST_SUITE_P(
                     ParseCase{"render BOX --envmap-rotate nan", "--envmap-rotate: 'nan' is not a finite number"},
                     ParseCase{"bench --width 12x", "--width: '12x' is not a number"},
                     ParseCase{"render BOX --spp 0", "--spp: Value 0 not in range 1 to 16777216"}),
-    [](const testing::TestParamInfo<ParseCase>& info) {
-      std::string name = info.param.args;
-      for (char& c : name)
-        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-      return name;
-    });
+    [](const testing::TestParamInfo<ParseCase>& info) { return test::identifier(info.param.args); });
 
 TEST(CliHelpCommand, HelpAndVersionAreCommandsToo) {
   const auto help = tessera("help"), flag = tessera("--help");

@@ -122,12 +122,7 @@ INSTANTIATE_TEST_SUITE_P(Values, CliBadOption,
                                          BadOption{"--aov bogus", "--aov", "bogus"},
                                          BadOption{"--noise-threshold -1", "--noise-threshold", "-1"},
                                          BadOption{"--noise-threshold 0.01 --min-spp 2", "--min-spp", "2"}),
-                         [](const testing::TestParamInfo<BadOption>& info) {
-                           std::string name = info.param.args;
-                           for (char& c : name)
-                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-                           return name;
-                         });
+                         [](const testing::TestParamInfo<BadOption>& info) { return test::identifier(info.param.args); });
 
 TEST(CliOptions, MalformedBackgroundExits2) {
   // Checked after parsing, so no --help hint: one line.

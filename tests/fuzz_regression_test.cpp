@@ -40,12 +40,7 @@ TEST_P(FuzzRegression, LoadsOrIsRefusedCleanly) {
 TEST(FuzzRegressionCorpus, IsNotEmpty) { EXPECT_FALSE(regression_files().empty()); }
 
 INSTANTIATE_TEST_SUITE_P(Corpus, FuzzRegression, testing::ValuesIn(regression_files()),
-                         [](const testing::TestParamInfo<std::string>& info) {
-                           std::string name = info.param;
-                           for (char& c : name)
-                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-                           return name;
-                         });
+                         [](const testing::TestParamInfo<std::string>& info) { return test::identifier(info.param); });
 
 }  // namespace
 }  // namespace tessera

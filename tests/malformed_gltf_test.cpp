@@ -81,12 +81,7 @@ TEST_P(MalformedGltf, InfoExitsTwoWithOneLine) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Corpus, MalformedGltf, testing::ValuesIn(read_expected()),
-                         [](const testing::TestParamInfo<MalformedCase>& info) {
-                           std::string name = info.param.file;
-                           for (char& c : name)
-                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-                           return name;
-                         });
+                         [](const testing::TestParamInfo<MalformedCase>& info) { return test::identifier(info.param.file); });
 
 }  // namespace
 }  // namespace tessera

@@ -3,6 +3,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -47,6 +48,12 @@ CommandResult run_command(const std::string& command_line) {
   fs::remove(stem + ".out");
   fs::remove(stem + ".err");
   return r;
+}
+
+std::string identifier(std::string text) {
+  for (char& c : text)
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  return text;
 }
 
 std::string base64(const std::vector<std::uint8_t>& bytes) {

@@ -22,6 +22,9 @@ struct CommandResult {
 // Runs a shell command line, capturing standard output and standard error.
 CommandResult run_command(const std::string& command_line);
 
+// `text` as a GoogleTest parameter name: every character but letters and digits becomes '_'.
+std::string identifier(std::string text);
+
 // Standard base64 (RFC 4648, padded): for glTF buffers built in memory as data URIs.
 std::string base64(const std::vector<std::uint8_t>& bytes);
 
