@@ -257,8 +257,8 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
       ->group("Threads and profiling");
   cmd->footer(
       "Examples:\n"
-      "  tessera render scenes/cornell-box/cornell-box.gltf --denoise -o cornell.png\n"
-      "      a clean 960x960 picture (--denoise turns on the layers it needs)\n"
+      "  tessera render scenes/cornell-box/cornell-box.gltf --width 640 --spp 32 --denoise -o cornell-box.png\n"
+      "      a clean picture from few samples (the README's: 640x640, 32 spp, denoised)\n"
       "  tessera render model.glb --quick --look-at 3,2,3,0,0,0,0,1,0 -o look.png\n"
       "      a fast low-resolution look from a chosen point\n"
       "  tessera render shot.glb --frames 1:48 -o shot.####.exr --aov albedo,normal,depth --skip-existing\n"

@@ -7,17 +7,20 @@
 #
 # Needs oiiotool (Debian 12: openimageio-tools, in third_party_config/debian-packages.txt)
 # to turn the EXR's AOV layers into PNGs. About 3 to 6 minutes on 2 cores (198 s measured); renders run one after
-# the other, each on all cores. The one intermediate file, helmet.exr, is deleted at the end.
+# the other, each on all cores. The intermediate files, helmet.exr and cornell-box.exr, are deleted at the end.
 # shellcheck source=docs/prelude.sh
 source "$(dirname "${BASH_SOURCE[0]}")/prelude.sh"
 need_oiiotool
 
 mkdir -p docs/images
-trap 'rm -f helmet.exr' EXIT
+trap 'rm -f helmet.exr cornell-box.exr' EXIT
 start=$SECONDS
 
-# --- The default scene (README.md shows this one) ----------------------------------------
+# --- The default scene -----------------------------------------------------------------------
 run tessera render scenes/cornell-box/cornell-box.gltf --width 640 --spp 512 -o docs/images/cornell-box.png
+# README.md's image: exactly the command README.md gives first, its preview moved here.
+run tessera render scenes/cornell-box/cornell-box.gltf --width 640 --spp 32 --denoise -o cornell-box.exr --preview cornell-box.png
+run mv cornell-box.png docs/images/readme-cornell-box.png
 
 # --- DamagedHelmet: automatic camera, 'auto' background, environment map, AOVs ------------
 run tessera render scenes/khronos/DamagedHelmet/glTF-Binary/DamagedHelmet.glb --width 640 --spp 64 --background 0 -o docs/images/helmet-no-envmap.png
