@@ -110,6 +110,10 @@ int parse_command_line(CLI::App& app, int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::ExtrasError& e) {
     return explain_extras(app, e);
+  } catch (const CLI::ArgumentMismatch& e) {  // CLI11: "--spp: At Most 1 required but received 2"
+    const std::string text = e.what();
+    const std::size_t colon = text.find(": At Most 1 required");
+    return usage_error(colon == std::string::npos ? text : text.substr(0, colon) + ": given more than once");
   } catch (const CLI::ParseError& e) {
     return usage_error(e.what());
   }

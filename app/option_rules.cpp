@@ -1,11 +1,13 @@
 #include "app/option_rules.h"
 
 #include <filesystem>
+#include <limits>
 
 #include <fmt/format.h>
 
 #include "app/exit_codes.h"
 #include "app/frame_pipeline.h"
+#include "renderer/adaptive_sampling.h"
 #include "renderer/image_output.h"
 
 namespace tessera {
@@ -87,6 +89,10 @@ std::vector<std::string> ignored_option_warnings(const RenderOptions& o, bool di
       warn(view, !display, "applies to display formats (PNG, JPEG, ...) only; none is written");
     warn("--rank-scheduler", !distributed, "applies only under mpirun with more than one rank");
     warn("--skip-existing", o.frames.empty() && o.frame < 0, "applies only with --frames or --frame");
+    const int first = adaptive_min_spp({o.noise_threshold, o.min_spp}, std::numeric_limits<int>::max());
+    warn("--noise-threshold", o.noise_threshold > 0.0f && first >= o.spp,
+         fmt::format("no pixel can stop early: each takes {} samples (its min spp) before it may, and --spp is {}",
+                     first, o.spp));
   }
   warn("--focus-distance", o.aperture <= 0.0f, "has no effect without --aperture (a pinhole camera is in focus everywhere)");
   warn("--envmap-scale", o.envmap.empty(), "has no effect without --envmap");

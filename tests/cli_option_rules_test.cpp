@@ -18,10 +18,12 @@ namespace fs = std::filesystem;
 std::string quote(const std::string& s) { return "'" + s + "'"; }
 std::string box() { return test::scene_path("khronos/Box/glTF-Binary/Box.glb"); }
 
-// A tiny render of Box.glb in `dir` (relative outputs land there) with `args`.
+// A tiny render of Box.glb in `dir` (relative outputs land there) with `args` (1 spp unless
+// they say).
 test::CommandResult render_in(const std::string& dir, const std::string& args) {
+  const std::string spp = args.find("--spp") == std::string::npos ? " --spp 1" : "";
   return test::run_command("cd " + quote(dir) + " && timeout 60 " + quote(test::tessera_exe()) + " render " +
-                           quote(box()) + " --width 8 --spp 1 -q " + args);
+                           quote(box()) + " --width 8 -q" + spp + " " + args);
 }
 
 struct Ignored {
@@ -68,9 +70,15 @@ INSTANTIATE_TEST_SUITE_P(
         Ignored{"-o a.exr --skip-existing", "--skip-existing: applies only with --frames or --frame"},
         Ignored{"-o a.exr --rank-scheduler static", "--rank-scheduler: applies only under mpirun with more than one rank"},
         Ignored{"-o a.exr --pixel 1,1", "--output: has no effect with --pixel, which writes no image"},
+        Ignored{"-o a.exr --spp 16 --noise-threshold 0.01",  // Cycles' min spp at 0.01: 64
+                "--noise-threshold: no pixel can stop early: each takes 64 samples (its min spp) before it may, and "
+                "--spp is 16"},
+        Ignored{"-o a.exr --spp 8 --noise-threshold 0.5 --min-spp 8",
+                "--noise-threshold: no pixel can stop early: each takes 8 samples (its min spp) before it may, and "
+                "--spp is 8"},
         // Given where they act: no warning.
         Ignored{"-o a.exr --preview a.png --aov depth --half --exposure 1 --view-transform standard --aperture 0.1 "
-                "--focus-distance 2",
+                "--focus-distance 2 --spp 9 --noise-threshold 0.5 --min-spp 8",
                 ""}),
     [](const testing::TestParamInfo<Ignored>& info) { return "case" + std::to_string(info.index); });
 

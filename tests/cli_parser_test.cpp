@@ -70,7 +70,8 @@ INSTANTIATE_TEST_SUITE_P(
                     ParseCase{"render BOX --exposure one", "--exposure: 'one' is not a number"},
                     ParseCase{"render BOX --envmap-rotate nan", "--envmap-rotate: 'nan' is not a finite number"},
                     ParseCase{"bench --width 12x", "--width: '12x' is not a number"},
-                    ParseCase{"render BOX --spp 0", "--spp: Value 0 not in range 1 to 16777216"}),
+                    ParseCase{"render BOX --spp 0", "--spp: Value 0 not in range 1 to 16777216"},
+                    ParseCase{"render BOX --spp 1 --spp 2", "--spp: given more than once"}),
     [](const testing::TestParamInfo<ParseCase>& info) { return test::identifier(info.param.args); });
 
 TEST(CliHelpCommand, HelpAndVersionAreCommandsToo) {
