@@ -8,6 +8,7 @@
 #include "app/commands.h"
 #include "app/exit_codes.h"
 #include "app/frame_denoise.h"
+#include "app/terminal.h"
 #include "renderer/image_input.h"
 #include "renderer/image_output.h"
 
@@ -52,8 +53,8 @@ int run_denoise(const DenoiseOptions& o) {
   write_image(o.output, frame, write);
   if (!o.preview.empty()) write_image(o.preview, frame, {});
   if (!o.quiet)
-    fmt::print(stderr, "tessera: denoised {} ({}x{}) in {:.2f} s; wrote {}{}\n", o.input, frame.width, frame.height, seconds,
-               o.output, o.preview.empty() ? "" : " and " + o.preview);
+    print_status(fmt::format("tessera: denoised {} ({}x{}) in {:.2f} s; wrote {}{}", o.input, frame.width, frame.height,
+                             seconds, o.output, o.preview.empty() ? "" : " and " + o.preview));
   return kExitSuccess;
 }
 

@@ -14,6 +14,7 @@
 #include "app/render_setup.h"
 #include "app/scaling_plot.h"
 #include "app/scaling_report.h"
+#include "app/terminal.h"
 #include "renderer/file_output.h"
 #include "renderer/render.h"
 
@@ -146,9 +147,9 @@ int run_scaling(const ScalingOptions& o) {
     s.cpu_share.push_back(r.profile.balance.cpu_share);
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (!o.quiet)
-      fmt::print(stderr, "{}: {:.3f} s, efficiency {:.1f}%, imbalance {:.2f}; {} elapsed, about {} left\n", name,
-                 r.stats.seconds, 100.0 * r.stats.efficiency, r.stats.imbalance, format_duration(elapsed),
-                 format_duration(elapsed / (i + 1) * (runs.size() - i - 1)));
+      print_status(fmt::format("{}: {:.3f} s, efficiency {:.1f}%, imbalance {:.2f}; {} elapsed, about {} left", name,
+                               r.stats.seconds, 100.0 * r.stats.efficiency, r.stats.imbalance, format_duration(elapsed),
+                               format_duration(elapsed / (i + 1) * (runs.size() - i - 1))));
   }
   if (interrupts.interrupted()) {
     fmt::print(stderr, "tessera: scaling interrupted; nothing written\n");
@@ -170,7 +171,7 @@ int run_scaling(const ScalingOptions& o) {
   write_scaling_plot((out / "scaling.svg").string(), report);
   if (!o.quiet) {
     fmt::print("{}\n", md);
-    fmt::print(stderr, "tessera: wrote {0}/scaling.md, {0}/scaling.csv and {0}/scaling.svg\n", dir);
+    print_status(fmt::format("tessera: wrote {0}/scaling.md, {0}/scaling.csv and {0}/scaling.svg", dir));
   }
   return kExitSuccess;
 }
