@@ -154,27 +154,31 @@ std::array<int, 2> size_of(const std::string& exr) {
   return {w.data[2] - w.data[0] + 1, w.data[3] - w.data[1] + 1};
 }
 
-TEST(CliResolution, ScaleAndQuickSetTheSize) {
-  const std::string dir = test::make_temp_dir("cli-resolution");
-  struct Case {
-    std::string args;
-    int width, height, spp;
-  };
-  // Box.glb has no camera: 16:9 from the width; the default width is 960.
-  const Case cases[] = {
-      {"--width 100 --resolution-scale 0.5 --spp 1", 50, 28, 1},  // 100x56, halved
-      {"--width 64 --height 10 --resolution-scale 2 --spp 1", 128, 20, 1},
-      {"--quick", 240, 135, 4},  // 960x540 at 0.25, 4 spp
-      {"--quick --spp 2 --resolution-scale 0.1", 96, 54, 2},  // what is given wins
-  };
-  for (const Case& c : cases) {
-    const std::string out = dir + "/out.exr";
-    const auto r = tessera("render " + quote(box()) + " -q -o " + quote(out) + " " + c.args);
-    ASSERT_EQ(r.exit_code, 0) << c.args << "\n" << r.err;
-    EXPECT_EQ(size_of(out), (std::array<int, 2>{c.width, c.height})) << c.args;
-    EXPECT_EQ(test::exr_int(out, "samplesPerPixel"), c.spp) << c.args;
-  }
+struct SizeCase {
+  const char* args;
+  int width, height, spp;
+};
+
+void PrintTo(const SizeCase& c, std::ostream* os) { *os << c.args; }
+
+class CliResolution : public testing::TestWithParam<SizeCase> {};
+
+TEST_P(CliResolution, SetsTheSizeAndSamples) {
+  const SizeCase& c = GetParam();
+  const std::string out = test::make_temp_dir("cli-resolution") + "/out.exr";
+  const auto r = tessera("render " + quote(box()) + " -q -o " + quote(out) + " " + c.args);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(size_of(out), (std::array<int, 2>{c.width, c.height}));
+  EXPECT_EQ(test::exr_int(out, "samplesPerPixel"), c.spp);
 }
+
+// Box.glb has no camera: 16:9 from the width; the default width is 960.
+INSTANTIATE_TEST_SUITE_P(Sizes, CliResolution,
+                         testing::Values(SizeCase{"--width 100 --resolution-scale 0.5 --spp 1", 50, 28, 1},  // 100x56 halved
+                                         SizeCase{"--width 64 --height 10 --resolution-scale 2 --spp 1", 128, 20, 1},
+                                         SizeCase{"--quick", 240, 135, 4},  // 960x540 at 0.25, 4 spp
+                                         SizeCase{"--quick --spp 2 --resolution-scale 0.1", 96, 54, 2}),  // given wins
+                         [](const testing::TestParamInfo<SizeCase>& info) { return test::identifier(info.param.args); });
 
 // ---- a camera from the command line ---------------------------------------------------------
 
@@ -188,34 +192,48 @@ float centre_depth(const std::string& camera_args) {
   return read_exr_channels(out).channels.at("Z")[16 * 33 + 16];
 }
 
-TEST(CliCamera, LookAtSeesTheObjectAtTheImageCentre) {
-  // The face nearest the eye is 0.5 from the centre: the depth along the view is the rest.
-  EXPECT_NEAR(centre_depth("--look-at 3,0,0,0,0,0,0,1,0"), 2.5f, 1e-4f);
-  EXPECT_NEAR(centre_depth("--look-at 0,4,0,0,0,0,0,0,-1"), 3.5f, 1e-4f);  // from above, up along -Z
-  EXPECT_NEAR(centre_depth("--look-at 0,0,-6,0,0,0,0,1,0 --fov 10"), 5.5f, 1e-4f);
-  EXPECT_NEAR(centre_depth("--camera-position 0,0,-6"), 5.5f, 1e-4f);  // at the scene's centre
-  EXPECT_NEAR(centre_depth("--camera-position 5,0,0 --camera-target 0,0,0"), 4.5f, 1e-4f);
+struct CameraCase {
+  const char* args;
+  float depth;  // at the centre pixel; for a refused view, 0
+  const char* message;  // the error line after "tessera: error: ", for a refused view
+};
+
+void PrintTo(const CameraCase& c, std::ostream* os) { *os << c.args; }
+
+class CliCamera : public testing::TestWithParam<CameraCase> {};
+
+// The face nearest the eye is 0.5 from the centre: the depth along the view is the rest.
+TEST_P(CliCamera, SeesTheObjectAtTheImageCentreOrRefusesADegenerateView) {
+  const CameraCase& c = GetParam();
+  if (c.message == nullptr) {
+    EXPECT_NEAR(centre_depth(c.args), c.depth, 1e-4f);
+    return;
+  }
+  const auto r = tessera("render " + quote(box()) + " --width 8 -q -o /dev/null.exr " + c.args);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, std::string("tessera: error: ") + c.message + "\n");
 }
 
-TEST(CliCamera, DegenerateViewsAreRefused) {
-  struct Case {
-    const char* args;
-    const char* message;
-  };
-  const Case cases[] = {
-      {"--look-at 1,1,1,1,1,1,0,1,0", "--look-at: the eye and the target are the same point, so there is no view direction"},
-      {"--look-at 0,3,0,0,0,0,0,1,0", "--look-at: up (0, 1, 0) is zero or along the view direction; give another up"},
-      {"--look-at 0,3,0,0,0,0,0,0,0", "--look-at: up (0, 0, 0) is zero or along the view direction; give another up"},
-      {"--camera-position 0,5,0", "--camera-position: up (0, 1, 0) is zero or along the view direction; give another up"},
-      {"--look-at 1,2,3", "--look-at 1,2,3: expected EYE,TARGET,UP (9 numbers separated by commas)"},
-      {"--camera-position 0,0,5 --camera-target 0,x,0", "--camera-target 0,x,0: expected X,Y,Z (3 numbers separated by commas)"},
-  };
-  for (const Case& c : cases) {
-    const auto r = tessera("render " + quote(box()) + " --width 8 -q -o /dev/null.exr " + c.args);
-    EXPECT_EQ(r.exit_code, 2) << c.args;
-    EXPECT_EQ(r.err, std::string("tessera: error: ") + c.message + "\n") << c.args;
-  }
-}
+INSTANTIATE_TEST_SUITE_P(
+    Views, CliCamera,
+    testing::Values(
+        CameraCase{"--look-at 3,0,0,0,0,0,0,1,0", 2.5f, nullptr},
+        CameraCase{"--look-at 0,4,0,0,0,0,0,0,-1", 3.5f, nullptr},  // from above, up along -Z
+        CameraCase{"--look-at 0,0,-6,0,0,0,0,1,0 --fov 10", 5.5f, nullptr},
+        CameraCase{"--camera-position 0,0,-6", 5.5f, nullptr},  // looking at the scene's centre
+        CameraCase{"--camera-position 5,0,0 --camera-target 0,0,0", 4.5f, nullptr},
+        CameraCase{"--look-at 1,1,1,1,1,1,0,1,0", 0.0f,
+                   "--look-at: the eye and the target are the same point, so there is no view direction"},
+        CameraCase{"--look-at 0,3,0,0,0,0,0,1,0", 0.0f,
+                   "--look-at: up (0, 1, 0) is zero or along the view direction; give another up"},
+        CameraCase{"--look-at 0,3,0,0,0,0,0,0,0", 0.0f,
+                   "--look-at: up (0, 0, 0) is zero or along the view direction; give another up"},
+        CameraCase{"--camera-position 0,5,0", 0.0f,
+                   "--camera-position: up (0, 1, 0) is zero or along the view direction; give another up"},
+        CameraCase{"--look-at 1,2,3", 0.0f, "--look-at 1,2,3: expected EYE,TARGET,UP (9 numbers separated by commas)"},
+        CameraCase{"--camera-position 0,0,5 --camera-target 0,x,0", 0.0f,
+                   "--camera-target 0,x,0: expected X,Y,Z (3 numbers separated by commas)"}),
+    [](const testing::TestParamInfo<CameraCase>& info) { return test::identifier(info.param.args); });
 
 // ---- info --json ----------------------------------------------------------------------------
 
