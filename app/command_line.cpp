@@ -99,7 +99,12 @@ int parse_command_line(CLI::App& app, int argc, char** argv) {
       ->add_option("command", topic, "The command to explain");
   app.add_subcommand("version", "Print the version");
   check_numbers(app);
-  if (const int code = check_command_name(app, argc > 1 ? argv[1] : ""); code >= 0) return code;
+  if (argc < 2) {
+    std::string names;
+    for (const std::string& n : command_names(app)) names += (names.empty() ? "" : ", ") + n;
+    return usage_error("no command given; the commands are " + names);
+  }
+  if (const int code = check_command_name(app, argv[1]); code >= 0) return code;
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -74,6 +74,13 @@ INSTANTIATE_TEST_SUITE_P(
                     ParseCase{"render BOX --spp 1 --spp 2", "--spp: given more than once"}),
     [](const testing::TestParamInfo<ParseCase>& info) { return test::identifier(info.param.args); });
 
+TEST(CliNoCommand, ListsTheCommands) {
+  const auto r = tessera("");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, "tessera: error: no command given; the commands are render, info, bench, scaling, denoise, help, "
+                   "version\n" + kHelpHint);
+}
+
 class CliHelpCommand : public testing::TestWithParam<std::pair<const char*, const char*>> {};
 
 // The command prints what the flag prints, with exit code 0.
