@@ -4,10 +4,10 @@
 #include <fstream>
 #include <sstream>
 
-#include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 
 #include "app/exit_codes.h"
+#include "renderer/image_codec.h"
 
 namespace tessera {
 
@@ -34,10 +34,9 @@ std::string gib(std::uint64_t bytes) { return fmt::format("{:.1f} GiB", bytes / 
 
 std::uint64_t environment_texels(const std::string& path) {
   if (path.empty()) return 0;
-  auto in = OIIO::ImageInput::open(path);  // the header only; unreadable files fail later, named
-  if (!in) return 0;
-  const OIIO::ImageSpec& spec = in->spec();
-  return static_cast<std::uint64_t>(spec.width) * spec.height;
+  DecodedImage size;  // the header only; unreadable files fail later, named
+  if (!image_codec().read_size(path, size)) return 0;
+  return static_cast<std::uint64_t>(size.width) * size.height;
 }
 
 }  // namespace

@@ -81,7 +81,8 @@ FrameJobResult render_frame_job(const RenderOptions& options, const FrameJob& jo
 
   LoadedScene loaded = load_scene(o, *job.document, job.print_warnings && leader);
   FramePlan plan = plan_frame(o, loaded.gltf, job.framing);
-  const double load_seconds = loaded.seconds;
+  // The file is read once for a whole sequence: its first frame counts the reading.
+  const double load_seconds = loaded.seconds + (job.print_warnings ? job.document->read_seconds : 0.0);
   const std::uint64_t triangles = loaded.triangles;
   const BuiltFrame built = build_frame(std::move(loaded), plan, job.scene_cache);
   RenderSettings& settings = plan.settings;

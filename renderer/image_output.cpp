@@ -21,11 +21,10 @@
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfStringAttribute.h>
 #include <OpenEXR/ImfThreading.h>
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
 
 #include "renderer/exr_layers.h"
 #include "renderer/file_output.h"
+#include "renderer/image_codec.h"
 #include "renderer/resume_layers.h"
 #include "renderer/texture.h"
 
@@ -172,26 +171,22 @@ void write_exr(const std::string& path, const FrameImage& img, const ImageWriteP
 // and says nothing; JPEG's library exits the process on a full disk), so the image is encoded
 // into memory and written by write_bytes_file, which checks every write and the fsync.
 // A writer that went straight to the file: read it back, so a truncated file is an error.
-void verify_readable(const std::string& path) {
-  auto in = OIIO::ImageInput::open(path);
-  std::vector<float> pixels;
-  if (in) pixels.resize(static_cast<std::size_t>(in->spec().image_pixels()) * in->spec().nchannels);
-  if (!in || !in->read_image(0, 0, 0, -1, OIIO::TypeDesc::FLOAT, pixels.data()))
+void write_oiio_pixels(const std::string& path, int width, int height, PixelType type, const void* pixels) {
+  EncodedImage encoded;
+  try {
+    encoded = image_codec().encode(path, width, height, type, pixels, "tessera " + tessera_version());
+  } catch (const std::runtime_error& e) {
+    throw OutputError(path + ": " + e.what());
+  }
+  if (encoded.in_memory) {
+    write_bytes_file(path, encoded.bytes.data(), encoded.bytes.size());
+    return;
+  }
+  try {
+    image_codec().read(path);
+  } catch (const std::runtime_error&) {
     throw OutputError(path + ": the written file does not read back (is the disk full?)");
-}
-
-void write_oiio_pixels(const std::string& path, int width, int height, OIIO::TypeDesc type, const void* pixels) {
-  auto out = OIIO::ImageOutput::create(path);
-  if (!out) throw OutputError(path + ": no image writer for this format (" + OIIO::geterror() + ")");
-  OIIO::ImageSpec spec(width, height, 3, type);
-  spec.attribute("Software", "tessera " + tessera_version());
-  std::vector<unsigned char> encoded;
-  OIIO::Filesystem::IOVecOutput memory(encoded);
-  const bool in_memory = out->supports("ioproxy") && out->set_ioproxy(&memory);
-  if (!out->open(path, spec)) throw OutputError(path + ": " + out->geterror());
-  if (!out->write_image(type, pixels) || !out->close()) throw OutputError(path + ": " + out->geterror());
-  if (in_memory) write_bytes_file(path, encoded.data(), encoded.size());
-  else verify_readable(path);
+  }
 }
 
 void write_oiio(const std::string& path, const FrameImage& img, const ImageWriteParams& params) {
@@ -199,10 +194,10 @@ void write_oiio(const std::string& path, const FrameImage& img, const ImageWrite
     const float scale = std::exp2(params.exposure);
     std::vector<float> scaled(img.rgb);
     for (float& v : scaled) v *= scale;
-    write_oiio_pixels(path, img.width, img.height, OIIO::TypeDesc::FLOAT, scaled.data());
+    write_oiio_pixels(path, img.width, img.height, PixelType::float32, scaled.data());
   } else {
     const std::vector<std::uint8_t> rgb = to_display_rgb8(img.rgb, params.exposure, params.display);
-    write_oiio_pixels(path, img.width, img.height, OIIO::TypeDesc::UINT8, rgb.data());
+    write_oiio_pixels(path, img.width, img.height, PixelType::uint8, rgb.data());
   }
 }
 
@@ -222,8 +217,7 @@ void check_output_path(const std::string& path) {
   check_writable_path(path);  // first: "-o /dev/full" is a device, whatever its extension
   const std::string ext = lower_extension(path);
   if (ext != ".exr") {
-    auto writer = OIIO::ImageOutput::create(path);
-    if (!writer) throw OutputPathError(path + ": unknown image format '" + ext + "' (use .exr, .png, .jpg, .ppm, .hdr, .tif, ...)");
+    if (!image_codec().has_writer(path)) throw OutputPathError(path + ": unknown image format '" + ext + "' (use .exr, .png, .jpg, .ppm, .hdr, .tif, ...)");
   }
 }
 
@@ -238,7 +232,7 @@ void write_image(const std::string& path, const FrameImage& image, const ImageWr
 void write_rgb8_image(const std::string& path, int width, int height, const std::vector<std::uint8_t>& rgb) {
   check_output_path(path);
   write_file_atomically(path, [&](const std::string& tmp) {
-    write_oiio_pixels(tmp, width, height, OIIO::TypeDesc::UINT8, rgb.data());
+    write_oiio_pixels(tmp, width, height, PixelType::uint8, rgb.data());
   });
 }
 
