@@ -19,7 +19,7 @@ namespace tessera {
 
 void add_render_command(CLI::App& app, RenderOptions& o) {
   CLI::App* cmd = app.add_subcommand("render", "Render a glTF 2.0 scene (.gltf or .glb) to an HDR OpenEXR frame.");
-  cmd->add_option("scene", o.scene_path, "The glTF file to render (with --resume: [default: the resumed file's])");
+  cmd->add_option("scene", o.scene_path, "The glTF file to render [with --resume: the one the resumed file stores]");
   cmd->add_option("-o,--output", o.output,
                   "Output image; .exr writes float RGBA with AOV layers and render metadata, other "
                   "extensions (.png .jpg .ppm .hdr .tif ...) go through OpenImageIO [default: SCENE_NAME.exr]");
@@ -161,9 +161,10 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
                   "many seconds; an EXR checkpoint can be continued with --resume")
       ->check(CLI::Range(0.001, 1e9));
   cmd->add_option("--resume", o.resume,
-                  "Continue a partial or checkpointed EXR written by tessera (same scene file and same options "
-                  "affecting pixels, else refused); the result is the same bit for bit as an uninterrupted render "
-                  "[-o default: this file]");
+                  "Continue a partial or checkpointed EXR written by tessera: alone, with the scene and options "
+                  "the file stores; an option given that contradicts them is refused (--spp may raise the target). "
+                  "The result is the same bit for bit as an uninterrupted render "
+                  "[-o default: this file; NAME.exr for NAME.partial.exr]");
   cmd->add_option("--light-sampling", o.light_sampling,
                   "How emitters and the environment are found: mis (BSDF and light sampling combined), "
                   "bsdf or lights (one strategy alone: noisier, same mean; for verification)")
