@@ -45,7 +45,7 @@ MemoryEstimate estimate_render_memory(const SceneDescription& scene, int width, 
                                       const std::string& envmap_path, bool adaptive) {
   MemoryEstimate m;
   const std::uint64_t pixels = static_cast<std::uint64_t>(width) * height;
-  const int aov_channels = (aovs.albedo ? 3 : 0) + (aovs.normal ? 3 : 0) + (aovs.depth ? 2 : 0);
+  const int aov_channels = (aovs.albedo ? 3 : 0) + (aovs.normal ? 3 : 0) + (aovs.depth ? 1 : 0) + (aovs.counts_hits() ? 1 : 0);
   m.film = pixels * (kFilmBytesPerPixel + aov_channels * kAovChannelBytes);
   if (aovs.halves || adaptive)
     m.film += pixels * (kOddBytesPerPixel + ((aovs.albedo ? 3 : 0) + (aovs.normal ? 3 : 0)) * kOddAovChannelBytes);

@@ -53,6 +53,7 @@ void render_tile(const RenderScene& scene, const RenderCamera& camera, const Pix
   params.max_bounces = settings.max_bounces;
   params.light_sampling = settings.light_sampling;
   params.clamp = settings.clamp;
+  params.transparent_background = settings.aovs.coverage;
   const vec3 forward = camera.forward();
   // Motion blur: each camera sample draws its time, after the film and lens positions. A
   // scene where nothing moves draws none, so its numbers and image stay what they were.
