@@ -1,15 +1,20 @@
-// Parsing tessera's command line with messages a user can act on: `tessera help [COMMAND]`
-// and `tessera version`, "not a number" for a number option given text, and the nearest
-// valid name for an unknown command or option ("did you mean `--width`?").
+// What the command line said: the whole command, quoted as a shell would need it (for the
+// EXR header), and which options a subcommand was given (--resume fills in the others).
 #pragma once
+
+#include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
 namespace tessera {
 
-// Adds the help and version commands and the number checks to `app` (its commands already
-// added), then parses. Returns -1 when a command is to run; else the exit code, after the
-// help or version (0) or a one-line error and a pointer to --help (2).
-int parse_command_line(CLI::App& app, int argc, char** argv);
+// argv joined by spaces, each argument that a POSIX shell would split or expand in single
+// quotes: pasted into a shell, it runs the same command.
+std::string shell_command_line(int argc, const char* const* argv);
+
+// The options of `command` (and of its option groups) that the parse gave at least once, by
+// their first long name ("--width"), or the positional's name ("scene").
+std::vector<std::string> given_options(const CLI::App& command);
 
 }  // namespace tessera

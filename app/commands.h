@@ -1,7 +1,6 @@
 // The subcommands of the tessera program, each with one options struct.
 #pragma once
 
-#include <set>
 #include <string>
 #include <vector>
 
@@ -56,12 +55,18 @@ struct RenderOptions {
   float noise_threshold = 0.0f;  // adaptive sampling: 0 off
   int min_spp = 0;  // adaptive sampling: 0 automatic
   bool denoise = false;
+  bool film_transparent = false;  // alpha = camera-ray coverage, no background in RGB
+  std::string owner, comments;  // the EXR's standard owner and comments attributes
+  std::string command_line;  // the whole command, for the EXR header (main sets it)
   float resolution_scale = 1.0f;  // scales the width and height (--resolution-scale)
   bool quick = false;  // --quick: a preset (app/option_rules.h)
   std::string pixel;  // --pixel X,Y: trace that pixel alone and print its paths
   std::string look_at;  // --look-at EYE,TARGET,UP (nine numbers)
   std::string camera_position, camera_target;  // X,Y,Z each
-  std::set<std::string> given;  // the options on the command line, by long name ("--spp")
+  // The options the command line gave (long names, "--width"; "scene" for the scene file):
+  // --resume takes the others from the file; the warnings about options without effect
+  // name them.
+  std::vector<std::string> given;
 };
 
 struct InfoOptions {

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "app/command_line.h"
+#include "app/command_parser.h"
 #include "app/commands.h"
 #include "app/exit_codes.h"
 #include "app/interrupt.h"
@@ -34,6 +35,7 @@ int main(int argc, char** argv) {
   ScalingOptions scaling;
   DenoiseOptions denoise;
   add_render_command(app, render);
+  render.command_line = shell_command_line(argc, argv);  // for the EXR header
   add_info_command(app, info);
   add_bench_command(app, bench);
   add_scaling_command(app, scaling);

@@ -1,5 +1,6 @@
 #include "app/option_rules.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <limits>
 
@@ -13,8 +14,6 @@
 namespace tessera {
 
 namespace {
-
-bool given(const RenderOptions& o, const char* name) { return o.given.count(name) > 0; }
 
 // Whether two paths name one file, which need not exist yet ("a.exr" and "./a.exr").
 bool same_file(const std::string& a, const std::string& b) {
@@ -53,6 +52,10 @@ void pixel_warnings(const RenderOptions& o, std::vector<std::string>& out) {
 }
 
 }  // namespace
+
+bool given(const RenderOptions& o, const char* name) {
+  return std::find(o.given.begin(), o.given.end(), name) != o.given.end();
+}
 
 void apply_quick_preset(RenderOptions& o) {
   if (!o.quick) return;

@@ -10,6 +10,9 @@
 
 namespace tessera {
 
+// Whether the command line gave `name` ("--spp").
+bool given(const RenderOptions& o, const char* name);
+
 // --quick: --resolution-scale 0.25, --spp 4, --max-bounces 4, each unless given.
 void apply_quick_preset(RenderOptions& o);
 

@@ -9,17 +9,19 @@
 #include "app/exit_codes.h"
 #include "app/frame_pipeline.h"
 #include "app/frame_sequence.h"
-#include "app/option_rules.h"
-#include "app/pixel_report.h"
 #include "app/progress.h"
 #include "app/render_job.h"
+#include "app/command_line.h"
+#include "app/option_rules.h"
+#include "app/pixel_report.h"
+#include "app/resume_options.h"
 #include "renderer/render.h"
 
 namespace tessera {
 
 void add_render_command(CLI::App& app, RenderOptions& o) {
   CLI::App* cmd = app.add_subcommand("render", "Render a glTF 2.0 scene (.gltf or .glb) to an HDR OpenEXR frame.");
-  cmd->add_option("scene", o.scene_path, "The glTF file to render")->required();
+  cmd->add_option("scene", o.scene_path, "The glTF file to render [with --resume: the one the resumed file stores]");
   cmd->add_option("-o,--output", o.output,
                   "Output image; .exr writes float RGBA with AOV layers and render metadata, other "
                   "extensions (.png .jpg .ppm .hdr .tif ...) go through OpenImageIO [default: SCENE_NAME.exr]")
@@ -49,7 +51,18 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
       ->delimiter(',')
       ->check(CLI::IsMember({"albedo", "normal", "depth", "cost", "halves"}))
       ->group("Output");
-  cmd->add_flag("--half", o.half, "Write 16-bit half floats to the EXR instead of 32-bit floats")
+  cmd->add_flag("--half", o.half,
+                "Write the EXR's colour channels (RGBA and colour layers) as 16-bit half floats; Z, N, "
+                "counts and times stay 32-bit")
+      ->group("Output");
+  // EXR compositing conventions (docs/usage.md, "The EXR"): alpha, and who made the frame.
+  cmd->add_flag("--film-transparent", o.film_transparent,
+                "EXR alpha = the fraction of each pixel's camera samples that hit geometry, and no background "
+                "in RGB (premultiplied, for comping over a plate); the background still lights the scene")
+      ->group("Output");
+  cmd->add_option("--owner", o.owner, "The EXR's standard owner attribute")
+      ->group("Output");
+  cmd->add_option("--comments", o.comments, "The EXR's standard comments attribute")
       ->group("Output");
   cmd->add_option("--exposure", o.exposure, "Exposure in stops applied to non-EXR outputs (display formats: before the view transform; .hdr/.tif/.pfm: linear)")
       ->check(CLI::Range(-64.0f, 64.0f))->capture_default_str()
@@ -218,9 +231,10 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
       ->check(CLI::Range(0.001, 1e9))
       ->group("Time and resume");
   cmd->add_option("--resume", o.resume,
-                  "Continue a partial or checkpointed EXR written by tessera (same scene file and same options "
-                  "affecting pixels, else refused); the result is the same bit for bit as an uninterrupted render "
-                  "[-o default: this file]")
+                  "Continue a partial or checkpointed EXR written by tessera: alone, with the scene and options "
+                  "the file stores; an option given that contradicts them is refused (--spp may raise the target). "
+                  "The result is the same bit for bit as an uninterrupted render "
+                  "[-o default: this file; NAME.exr for NAME.partial.exr]")
       ->group("Time and resume");
   cmd->add_option("--threads", o.threads, "Render threads [default: all cores]")->check(CLI::Range(1, 1024))
       ->group("Threads and profiling");
@@ -263,11 +277,8 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
       "      a fast low-resolution look from a chosen point\n"
       "  tessera render shot.glb --frames 1:48 -o shot.####.exr --aov albedo,normal,depth --skip-existing\n"
       "      an animation as numbered EXRs with AOV layers; rerun to continue where it stopped\n");
-  // What was given, not only its value: for the warnings about options without effect.
-  cmd->callback([cmd, &o] {
-    for (const CLI::Option* option : cmd->get_options())
-      if (option->count() > 0 && !option->get_lnames().empty()) o.given.insert("--" + option->get_lnames()[0]);
-  });
+  // --resume takes every option not given from the file: which ones were given.
+  cmd->parse_complete_callback([cmd, &o] { o.given = given_options(*cmd); });
 }
 
 namespace {
@@ -302,9 +313,10 @@ std::vector<PlannedFrame> plan_frames(const RenderOptions& o) {
 }  // namespace
 
 int run_render(const RenderOptions& options, RankGroup* ranks) {
-  RenderOptions o = options;
+  RenderOptions o = options.resume.empty() ? options : with_stored_options(options);
   const bool leader = !ranks || ranks->rank() == 0;
   o.quiet = o.quiet || !leader;  // rank 0 speaks for the ranks
+  if (o.scene_path.empty()) throw UsageError("scene: the glTF file to render is required (or --resume FILE)");
   if (!o.frames.empty() && !o.resume.empty())
     throw UsageError("--resume: continues one frame; a sequence continues its interrupted frame with --skip-existing");
   apply_quick_preset(o);
@@ -321,7 +333,7 @@ int run_render(const RenderOptions& options, RankGroup* ranks) {
   const GltfDocument document = read_gltf(o.scene_path);
   if (leader && document.model.animations.empty())
     for (const char* option : {"--time", "--frame", "--frames"})
-      if (o.given.count(option))
+      if (given(o, option))
         fmt::print(stderr, "tessera: warning: {}: {} has no animation, so every time shows the same scene\n", option,
                    o.scene_path);
   Bounds3 framing = animation_bounds(o, document);

@@ -32,7 +32,7 @@ class CameraSampler {
   PixelFilter filter_;
   PathTracerParams params_;
   vec3 forward_;
-  bool camera_moves_, timed_;
+  bool camera_moves_, timed_, has_lens_;
   float inv_w_, inv_h_;
 };
 
