@@ -39,7 +39,8 @@ bool any_output(const RenderOptions& o, Predicate p) {
 
 // Options that only shape the written image or how it is rendered in parallel: nothing of
 // theirs happens when --pixel traces one pixel and writes nothing.
-const char* const kNotWithPixel[] = {"--output", "--preview", "--aov", "--half", "--exposure", "--view-transform",
+const char* const kNotWithPixel[] = {"--output", "--preview", "--aov", "--half", "--owner", "--comments",
+                                     "--film-transparent", "--exposure", "--view-transform",
                                      "--ocio-config", "--ocio-display", "--ocio-view", "--denoise",
                                      "--time-limit", "--checkpoint", "--noise-threshold", "--min-spp",
                                      "--threads", "--tile-size", "--scheduler", "--tile-order",
@@ -87,6 +88,8 @@ std::vector<std::string> ignored_option_warnings(const RenderOptions& o, bool di
     const bool display = any_output(o, is_display_format_path);
     warn("--aov", !exr, "layers need an EXR output (-o or --preview FILE.exr); none is written");
     warn("--half", !exr, "half floats are an EXR option; no EXR is written");
+    warn("--owner", !exr, "is an EXR header attribute; no EXR is written");
+    warn("--comments", !exr, "is an EXR header attribute; no EXR is written");
     warn("--exposure", linear_only, "applies to non-EXR outputs only (the EXR stays scene-linear); add --preview FILE.png");
     for (const char* view : {"--view-transform", "--ocio-config", "--ocio-display", "--ocio-view"})
       warn(view, !display, "applies to display formats (PNG, JPEG, ...) only; none is written");

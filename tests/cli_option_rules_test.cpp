@@ -54,6 +54,9 @@ INSTANTIATE_TEST_SUITE_P(
         Ignored{"-o a.png --aov albedo --half",
                 "--aov: layers need an EXR output (-o or --preview FILE.exr); none is written\n"
                 "--half: half floats are an EXR option; no EXR is written"},
+        Ignored{"-o a.png --owner me --comments 'a test'",
+                "--owner: is an EXR header attribute; no EXR is written\n"
+                "--comments: is an EXR header attribute; no EXR is written"},
         Ignored{"-o a.exr --exposure 1",
                 "--exposure: applies to non-EXR outputs only (the EXR stays scene-linear); add --preview FILE.png"},
         Ignored{"-o a.exr --view-transform standard",
