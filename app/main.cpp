@@ -65,8 +65,9 @@ int main(int argc, char** argv) {
       if (mpi->rank() > 0) who = fmt::format("rank {}: ", mpi->rank());
     }
     if (app.got_subcommand("render")) {
-      if (mpi) ranks = mpi->ranks();
+      if (mpi) ranks = mpi->ranks(render.rank_timeout);
       const int code = run_render(render, ranks.get());
+      if (ranks) ranks->barrier();  // watched: freeing the window below waits for every rank unwatched
       ranks.reset();  // its window is freed collectively, before MPI_Finalize
       return code;
     }

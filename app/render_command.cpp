@@ -49,6 +49,11 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
   cmd->add_option("--heatmap", o.heatmap,
                   "Write the CPU time spent on each tile as a colour map with pixel axes and a colour bar in ms or s "
                   "(FILE.png or any 8-bit image format; FILE.svg for a vector drawing)");
+  cmd->add_option("--heatmap-by", o.heatmap_by,
+                  "What the heat map's colours show: cost (CPU time per tile) or rank (under mpirun: the rank that "
+                  "spent the most CPU time on the tile)")
+      ->check(CLI::IsMember({"cost", "rank"}))
+      ->capture_default_str();
   cmd->add_option("--seed", o.seed, "Seed of every random number (same seed, same image, for any thread count)")
       ->check(CLI::Range(0LL, 2147483647LL))->capture_default_str();
   cmd->add_option("--sampler", o.sampler,
@@ -100,6 +105,13 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
                   "Under mpirun: how each wave's tiles are shared by the ranks: dynamic (batches from one counter, "
                   "as the tiles are finished) or static (one block per rank, the paper's chunks)")
       ->check(CLI::IsMember({"dynamic", "static"}))
+      ->capture_default_str();
+  cmd->add_option("--rank-timeout", o.rank_timeout,
+                  "Under mpirun: end the job (exit 1, naming the rank) when a rank has given no sign of life for "
+                  "this many seconds while rank 0 waits for it (a stopped or hung node); it must exceed the longest "
+                  "a rank works without contacting rank 0: a batch of tiles, a static block, a wave of a whole "
+                  "frame (0: wait forever)")
+      ->check(CLI::Range(0.0, 1e9))
       ->capture_default_str();
   cmd->add_option("--aperture", o.aperture, "Thin-lens aperture diameter in scene units (0: pinhole)")
       ->check(CLI::Range(0.0f, 1e6f))->capture_default_str();
@@ -243,7 +255,8 @@ int run_render(const RenderOptions& options, RankGroup* ranks) {
     }
     const bool first = rendered == 0;
     const FrameJobResult done = render_frame_job(
-        f.options, {&document, framing.empty() ? nullptr : &framing, f.label, first, &scene_cache, tile_ranks});
+        f.options, {&document, framing.empty() ? nullptr : &framing, f.label, first, &scene_cache, tile_ranks,
+                                 whole_frames ? ranks : nullptr});
     ++rendered;
     interrupted = done.interrupted;
   }

@@ -1,21 +1,63 @@
 #include "renderer/mpi_ranks.h"
 
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
 #include <string>
+#include <thread>
 
 #include <mpi.h>
 
 namespace tessera {
 namespace {
 
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// Adds the time from construction to destruction to a total: the communication time.
+class Timed {
+ public:
+  explicit Timed(double& total) : total_(total), start_(Clock::now()) {}
+  ~Timed() { total_ += seconds_since(start_); }
+  Timed(const Timed&) = delete;
+  Timed& operator=(const Timed&) = delete;
+
+ private:
+  double& total_;
+  Clock::time_point start_;
+};
+
+// Rank 0's window holds the work counter, then two notes per rank that rank 0's watchdog
+// reads: the number of the last collective call the rank entered, and how many signs of
+// life (calls, batches taken) it has given.
+constexpr MPI_Aint kCounter = 0;
+MPI_Aint arrived_slot(int rank) { return 1 + 2 * static_cast<MPI_Aint>(rank); }
+MPI_Aint beats_slot(int rank) { return arrived_slot(rank) + 1; }
+
+// A waiting rank tests its request in a loop, as MPI_Wait does, then after this long sleeps
+// between tests, giving its core to ranks that still render (an oversubscribed machine).
+constexpr double kSpinSeconds = 0.01;
+constexpr auto kNap = std::chrono::microseconds(200);
+constexpr double kWatchEvery = 0.05;  // seconds between rank 0's looks at the notes
+
+std::string rank_list(const std::vector<int>& ranks) {
+  std::string s = ranks.size() == 1 ? "rank " : "ranks ";
+  for (std::size_t i = 0; i < ranks.size(); ++i) s += (i ? ", " : "") + std::to_string(ranks[i]);
+  return s;
+}
+
 class MpiRankGroup : public RankGroup {
  public:
-  MpiRankGroup(int rank, int size) : rank_(rank), size_(size) {
-    MPI_Win_allocate(rank == 0 ? sizeof(long long) : 0, sizeof(long long), MPI_INFO_NULL, MPI_COMM_WORLD, &counter_,
-                     &window_);
-    if (rank == 0) *counter_ = 0;
+  MpiRankGroup(int rank, int size, double timeout) : rank_(rank), size_(size), timeout_(timeout) {
+    const MPI_Aint slots = rank == 0 ? arrived_slot(size) : 0;
+    MPI_Win_allocate(slots * static_cast<MPI_Aint>(sizeof(long long)), sizeof(long long), MPI_INFO_NULL,
+                     MPI_COMM_WORLD, &slots_, &window_);
+    std::fill_n(slots_, slots, 0LL);
     MPI_Win_lock_all(MPI_MODE_NOCHECK, window_);
+    MPI_Barrier(MPI_COMM_WORLD);  // rank 0's slots are zero before anyone writes them
   }
   ~MpiRankGroup() override {
     MPI_Win_unlock_all(window_);
@@ -26,54 +68,187 @@ class MpiRankGroup : public RankGroup {
   int size() const override { return size_; }
 
   void start_wave(std::size_t count) override {
+    Timed timed(communication_);
     count_ = count;
-    MPI_Barrier(MPI_COMM_WORLD);  // everyone is done with the last wave's counter
+    barrier_untimed();  // everyone is done with the last wave's counter
     if (rank_ == 0) {
       const long long zero = 0;
-      MPI_Put(&zero, 1, MPI_LONG_LONG, 0, 0, 1, MPI_LONG_LONG, window_);
+      MPI_Put(&zero, 1, MPI_LONG_LONG, 0, kCounter, 1, MPI_LONG_LONG, window_);
       MPI_Win_flush(0, window_);
     }
-    MPI_Barrier(MPI_COMM_WORLD);
+    barrier_untimed();
   }
 
   std::pair<std::size_t, std::size_t> next_items(std::size_t batch) override {
+    Timed timed(communication_);
     const long long add = static_cast<long long>(batch);
     long long first = 0;
-    MPI_Fetch_and_op(&add, &first, MPI_LONG_LONG, 0, 0, MPI_SUM, window_);
+    MPI_Fetch_and_op(&add, &first, MPI_LONG_LONG, 0, kCounter, MPI_SUM, window_);
+    note_beat();  // flushed with the counter's operation
     MPI_Win_flush(0, window_);
     const std::size_t begin = std::min(static_cast<std::size_t>(first), count_);
     return {begin, std::min(begin + batch, count_)};
   }
 
   std::vector<std::vector<char>> all_gather(const std::vector<char>& mine) override {
+    Timed timed(communication_);
     const int n = static_cast<int>(mine.size());
     std::vector<int> sizes(size_), offsets(size_);
-    MPI_Allgather(&n, 1, MPI_INT, sizes.data(), 1, MPI_INT, MPI_COMM_WORLD);
-    int total = 0;
-    for (int r = 0; r < size_; ++r) offsets[r] = total, total += sizes[r];
+    enter();
+    MPI_Request request;
+    MPI_Iallgather(&n, 1, MPI_INT, sizes.data(), 1, MPI_INT, MPI_COMM_WORLD, &request);
+    wait(request);
+    const int total = place(sizes, offsets);
     std::vector<char> all(static_cast<std::size_t>(total));
-    MPI_Allgatherv(mine.data(), n, MPI_CHAR, all.data(), sizes.data(), offsets.data(), MPI_CHAR, MPI_COMM_WORLD);
+    enter();
+    MPI_Iallgatherv(mine.data(), n, MPI_CHAR, all.data(), sizes.data(), offsets.data(), MPI_CHAR, MPI_COMM_WORLD,
+                    &request);
+    wait(request);
+    return split(all, sizes, offsets);
+  }
+
+  std::vector<std::vector<char>> gather(const std::vector<char>& mine) override {
+    Timed timed(communication_);
+    const int n = static_cast<int>(mine.size());
+    std::vector<int> sizes(size_), offsets(size_);
+    enter();
+    MPI_Request request;
+    MPI_Igather(&n, 1, MPI_INT, sizes.data(), 1, MPI_INT, 0, MPI_COMM_WORLD, &request);
+    wait(request);
+    const int total = place(sizes, offsets);
+    std::vector<char> all(rank_ == 0 ? static_cast<std::size_t>(total) : 0);
+    enter();
+    MPI_Igatherv(mine.data(), n, MPI_CHAR, all.data(), sizes.data(), offsets.data(), MPI_CHAR, 0, MPI_COMM_WORLD,
+                 &request);
+    wait(request);
+    if (rank_ != 0) return {};
+    return split(all, sizes, offsets);
+  }
+
+  bool any(bool flag) override {
+    Timed timed(communication_);
+    int mine = flag ? 1 : 0, result = 0;
+    enter();
+    MPI_Request request;
+    MPI_Iallreduce(&mine, &result, 1, MPI_INT, MPI_LOR, MPI_COMM_WORLD, &request);
+    wait(request);
+    return result != 0;
+  }
+
+  std::uint64_t sum(std::uint64_t value) override {
+    Timed timed(communication_);
+    unsigned long long mine = value, result = 0;
+    enter();
+    MPI_Request request;
+    MPI_Iallreduce(&mine, &result, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, MPI_COMM_WORLD, &request);
+    wait(request);
+    return result;
+  }
+
+  void barrier() override {
+    Timed timed(communication_);
+    barrier_untimed();
+  }
+
+  void alive() override {
+    Timed timed(communication_);
+    note_beat();
+    MPI_Win_flush(0, window_);
+  }
+
+  double communication_seconds() const override { return communication_; }
+
+ private:
+  void barrier_untimed() {
+    enter();
+    MPI_Request request;
+    MPI_Ibarrier(MPI_COMM_WORLD, &request);
+    wait(request);
+  }
+
+  static int place(const std::vector<int>& sizes, std::vector<int>& offsets) {
+    int total = 0;
+    for (std::size_t r = 0; r < sizes.size(); ++r) offsets[r] = total, total += sizes[r];
+    return total;
+  }
+
+  std::vector<std::vector<char>> split(const std::vector<char>& all, const std::vector<int>& sizes,
+                                       const std::vector<int>& offsets) const {
     std::vector<std::vector<char>> out(size_);
     for (int r = 0; r < size_; ++r) out[r].assign(all.begin() + offsets[r], all.begin() + offsets[r] + sizes[r]);
     return out;
   }
 
-  bool any(bool flag) override {
-    int mine = flag ? 1 : 0, result = 0;
-    MPI_Allreduce(&mine, &result, 1, MPI_INT, MPI_LOR, MPI_COMM_WORLD);
-    return result != 0;
+  // Notes for rank 0's watchdog, atomic (accumulate, replace) so that its reads see whole values.
+  void note_beat() {
+    ++beats_;
+    if (rank_ != 0) MPI_Accumulate(&beats_, 1, MPI_LONG_LONG, 0, beats_slot(rank_), 1, MPI_LONG_LONG, MPI_REPLACE, window_);
+  }
+  // Before each collective call: every rank makes the same calls, so their numbers agree.
+  void enter() {
+    ++calls_;
+    note_beat();
+    if (rank_ == 0) return;
+    MPI_Accumulate(&calls_, 1, MPI_LONG_LONG, 0, arrived_slot(rank_), 1, MPI_LONG_LONG, MPI_REPLACE, window_);
+    MPI_Win_flush(0, window_);
   }
 
-  std::uint64_t sum(std::uint64_t value) override {
-    unsigned long long mine = value, result = 0;
-    MPI_Allreduce(&mine, &result, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, MPI_COMM_WORLD);
-    return result;
+  // Rank 0's view of the notes: [arrived, beats] per rank.
+  std::vector<long long> read_notes() {
+    std::vector<long long> notes(2 * static_cast<std::size_t>(size_));
+    MPI_Get_accumulate(nullptr, 0, MPI_LONG_LONG, notes.data(), static_cast<int>(notes.size()), MPI_LONG_LONG, 0,
+                       arrived_slot(0), static_cast<int>(notes.size()), MPI_LONG_LONG, MPI_NO_OP, window_);
+    MPI_Win_flush(0, window_);
+    return notes;
   }
 
- private:
+  // MPI_Wait with a deadline. Rank 0 names and gives up on the ranks that have not reached
+  // this call and have shown no sign of life for the timeout; another rank gives up when
+  // the call has not completed in twice the timeout (rank 0 itself may be the one stopped).
+  void wait(MPI_Request& request) {
+    int done = 0;
+    MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+    if (done) return;
+    const Clock::time_point start = Clock::now();
+    std::vector<long long> beats(size_, -1);
+    std::vector<Clock::time_point> seen(size_, start);
+    Clock::time_point looked = start;
+    for (;;) {
+      MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+      if (done) return;
+      if (seconds_since(start) > kSpinSeconds) std::this_thread::sleep_for(kNap);
+      if (timeout_ <= 0.0 || seconds_since(looked) < kWatchEvery) continue;
+      looked = Clock::now();
+      if (rank_ != 0) {
+        if (seconds_since(start) > 2 * timeout_)
+          throw RankTimeout(fmt_seconds("no answer from the other ranks for ", 2 * timeout_) +
+                            " (rank 0, which watches them, may be stopped or hung): ending the job");
+        continue;
+      }
+      const std::vector<long long> notes = read_notes();
+      std::vector<int> late;
+      for (int r = 1; r < size_; ++r) {
+        if (notes[2 * r + 1] != beats[r]) beats[r] = notes[2 * r + 1], seen[r] = looked;
+        if (notes[2 * r] < calls_ && seconds_since(seen[r]) > timeout_) late.push_back(r);
+      }
+      if (!late.empty())
+        throw RankTimeout(rank_list(late) + fmt_seconds(late.size() == 1 ? " has not answered for " : " have not answered for ", timeout_) +
+                          " (stopped, hung or cut off): ending the job");
+    }
+  }
+
+  static std::string fmt_seconds(const std::string& before, double seconds) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g s", seconds);
+    return before + text;
+  }
+
   int rank_, size_;
+  double timeout_;
   std::size_t count_ = 0;
-  long long* counter_ = nullptr;
+  long long* slots_ = nullptr;
+  long long calls_ = 0, beats_ = 0;
+  double communication_ = 0.0;
   MPI_Win window_;
 };
 
@@ -95,7 +270,9 @@ MpiSession::MpiSession(int& argc, char**& argv) {
 
 MpiSession::~MpiSession() { MPI_Finalize(); }
 
-std::unique_ptr<RankGroup> MpiSession::ranks() const { return std::make_unique<MpiRankGroup>(rank_, size_); }
+std::unique_ptr<RankGroup> MpiSession::ranks(double timeout) const {
+  return std::make_unique<MpiRankGroup>(rank_, size_, timeout);
+}
 
 void MpiSession::abort_all(int exit_code) {
   MPI_Abort(MPI_COMM_WORLD, exit_code);

@@ -8,6 +8,7 @@
 
 #include "renderer/film_exchange.h"
 #include "renderer/integrator/path_tracer.h"
+#include "renderer/rank_profile.h"
 #include "renderer/schedulers.h"
 
 namespace tessera {
@@ -165,6 +166,8 @@ RenderResult render_frame(const RenderScene& scene, const RenderCamera& camera,
   const WorkPlan plan = make_work_plan(
       {settings.width, settings.height, settings.tile_size, threads, settings.scheduler, settings.tile_order});
   const std::vector<SampleWave> waves = sample_waves_of(settings);
+  if (settings.ranks) settings.ranks->barrier();  // the ranks start their clocks together: one time line
+  const double communication_before = settings.ranks ? settings.ranks->communication_seconds() : 0.0;
   ProfileRecorder recorder(plan, static_cast<int>(waves.size()), settings.record_tiles);
   std::atomic<std::uint64_t> dropped{film.state().dropped}, samples{0};
   std::atomic<bool> out_of_time{false};
@@ -220,6 +223,7 @@ RenderResult render_frame(const RenderScene& scene, const RenderCamera& camera,
       runner.run(body);
     }
     recorder.end_wave();
+    if (settings.alive_in) settings.alive_in->alive();
     first_wave = false;
     // Only after a whole wave (a stopped one skipped tiles), and not after the last.
     if (settings.adaptive.on() && waves[w].end >= min_spp && w + 1 < waves.size() && !all_stopped()) {
@@ -251,6 +255,9 @@ RenderResult render_frame(const RenderScene& scene, const RenderCamera& camera,
   RenderResult result;
   result.stats = stats;
   result.profile = recorder.finish();
+  if (settings.ranks)
+    result.profile = gather_profile(*settings.ranks, std::move(result.profile),
+                                    settings.ranks->communication_seconds() - communication_before);
   result.stats.efficiency = result.profile.balance.efficiency;
   result.stats.imbalance = result.profile.balance.imbalance;
   result.image = film.resolve();
