@@ -62,7 +62,10 @@ int main(int argc, char** argv) {
   try {
     if (launched_by_mpi()) {
       mpi = std::make_unique<MpiSession>(argc, argv);
-      if (mpi->rank() > 0) who = fmt::format("rank {}: ", mpi->rank());
+      if (mpi->rank() > 0) {
+        who = fmt::format("rank {}: ", mpi->rank());
+        quiet_interrupt_messages();
+      }
     }
     if (app.got_subcommand("render")) {
       if (mpi) ranks = mpi->ranks(render.rank_timeout);

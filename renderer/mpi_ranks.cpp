@@ -179,17 +179,21 @@ class MpiRankGroup : public RankGroup {
     return out;
   }
 
-  // Notes for rank 0's watchdog, atomic (accumulate, replace) so that its reads see whole values.
-  void note_beat() {
-    ++beats_;
-    if (rank_ != 0) MPI_Accumulate(&beats_, 1, MPI_LONG_LONG, 0, beats_slot(rank_), 1, MPI_LONG_LONG, MPI_REPLACE, window_);
+  // Notes for rank 0's watchdog: counters at rank 0 advanced with the same remote atomic as
+  // the work counter (MPI_Fetch_and_op, MPI_SUM), which needs nothing of rank 0 while it
+  // renders; other one-sided operations may wait for rank 0 to enter MPI, serialising the ranks.
+  void add_at_rank0(MPI_Aint slot) {
+    const long long one = 1;
+    long long before = 0;
+    if (rank_ != 0) MPI_Fetch_and_op(&one, &before, MPI_LONG_LONG, 0, slot, MPI_SUM, window_);
   }
-  // Before each collective call: every rank makes the same calls, so their numbers agree.
+  void note_beat() { add_at_rank0(beats_slot(rank_)); }
+  // Before each collective call: every rank makes the same calls, so their counts agree.
   void enter() {
     ++calls_;
-    note_beat();
     if (rank_ == 0) return;
-    MPI_Accumulate(&calls_, 1, MPI_LONG_LONG, 0, arrived_slot(rank_), 1, MPI_LONG_LONG, MPI_REPLACE, window_);
+    note_beat();
+    add_at_rank0(arrived_slot(rank_));
     MPI_Win_flush(0, window_);
   }
 
@@ -247,7 +251,7 @@ class MpiRankGroup : public RankGroup {
   double timeout_;
   std::size_t count_ = 0;
   long long* slots_ = nullptr;
-  long long calls_ = 0, beats_ = 0;
+  long long calls_ = 0;
   double communication_ = 0.0;
   MPI_Win window_;
 };

@@ -2,7 +2,6 @@
 
 #include <chrono>
 #include <stdexcept>
-#include <tuple>
 
 #include <tbb/info.h>
 
@@ -131,12 +130,19 @@ void run_wave_across_ranks(RankGroup& ranks, RankScheduler scheduler, const Work
   if (scheduler == RankScheduler::stat) {
     take(n * ranks.rank() / ranks.size(), n * (ranks.rank() + 1) / ranks.size());
   } else {
-    // Batches of about a quarter of a rank's fair share of threads' work: few requests, and
-    // the last ones small enough to even out the ranks' finishing times.
-    const std::size_t batch = std::max<std::size_t>(1, n / (4 * ranks.size() * plan.params.threads));
+    // Guided self-scheduling: each batch is half this rank's share of what is left (as the
+    // counter stood at its last request), and at least an item per thread. Few requests while
+    // much is left, small batches at the end, so the ranks finish together even when the
+    // costly tiles come last.
+    const std::size_t threads = static_cast<std::size_t>(plan.params.threads), share = 2 * ranks.size();
+    auto batch_after = [&](std::size_t counter) { return std::max(threads, (n - std::min(counter, n)) / share); };
     ranks.start_wave(n);
-    for (auto [begin, end] = ranks.next_items(batch); begin < end; std::tie(begin, end) = ranks.next_items(batch))
+    for (std::size_t batch = batch_after(0);;) {
+      const auto [begin, end] = ranks.next_items(batch);
+      if (begin >= end) break;
       take(begin, end);
+      batch = batch_after(begin + batch);
+    }
   }
   std::vector<Tile> rects;
   for (const WorkItem& item : plan.items) rects.push_back(item.rect);
