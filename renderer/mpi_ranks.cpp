@@ -53,8 +53,15 @@ class MpiRankGroup : public RankGroup {
  public:
   MpiRankGroup(int rank, int size, double timeout) : rank_(rank), size_(size), timeout_(timeout) {
     const MPI_Aint slots = rank == 0 ? arrived_slot(size) : 0;
-    MPI_Win_allocate(slots * static_cast<MPI_Aint>(sizeof(long long)), sizeof(long long), MPI_INFO_NULL,
-                     MPI_COMM_WORLD, &slots_, &window_);
+    // Open MPI's one-sided components differ by network; say which to use rather than die.
+    MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
+    const int made = MPI_Win_allocate(slots * static_cast<MPI_Aint>(sizeof(long long)), sizeof(long long),
+                                      MPI_INFO_NULL, MPI_COMM_WORLD, &slots_, &window_);
+    MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_ARE_FATAL);
+    if (made != MPI_SUCCESS)
+      throw std::runtime_error(
+          "MPI could not make the work counter's one-sided window on this network (over plain TCP, Open MPI's "
+          "osc/ucx fails: run mpirun with --mca osc ^ucx)");
     std::fill_n(slots_, slots, 0LL);
     MPI_Win_lock_all(MPI_MODE_NOCHECK, window_);
     MPI_Barrier(MPI_COMM_WORLD);  // rank 0's slots are zero before anyone writes them
@@ -154,6 +161,11 @@ class MpiRankGroup : public RankGroup {
     Timed timed(communication_);
     note_beat();
     MPI_Win_flush(0, window_);
+  }
+
+  void progress() override {
+    int flag = 0;
+    MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, MPI_STATUS_IGNORE);
   }
 
   double communication_seconds() const override { return communication_; }

@@ -34,6 +34,10 @@ class RankGroup {
   // Tells the others this rank is working, between the calls above: a rank rendering whole
   // frames alone calls it between sample waves.
   virtual void alive() = 0;
+  // Lets MPI serve the other ranks' requests to this rank's memory (the counter and notes
+  // live at rank 0): over a network without remote atomics in hardware (TCP), a request
+  // waits until the target rank enters MPI. Rank 0 calls it between its tiles.
+  virtual void progress() = 0;
   // Seconds this rank has spent inside the calls above (waiting for the others, moving data,
   // taking work from the counter): its communication time.
   virtual double communication_seconds() const = 0;

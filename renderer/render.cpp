@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <stdexcept>
+#include <thread>
 
 #include <tbb/info.h>
 
@@ -123,8 +124,14 @@ void run_wave_across_ranks(RankGroup& ranks, RankScheduler scheduler, const Work
                            const ItemBody& body, Film& film) {
   const std::size_t n = plan.items.size();
   std::vector<std::size_t> taken;
+  // Rank 0 holds the counter: between its tiles, its MPI thread (this one) serves the others.
+  const std::thread::id mpi_thread = std::this_thread::get_id();
+  const ItemBody serving = [&](std::size_t i, int thread) {
+    body(i, thread);
+    if (std::this_thread::get_id() == mpi_thread) ranks.progress();
+  };
   auto take = [&](std::size_t begin, std::size_t end) {
-    runner.run_range(begin, end, body);
+    runner.run_range(begin, end, ranks.rank() == 0 ? serving : body);
     for (std::size_t i = begin; i < end; ++i) taken.push_back(i);
   };
   if (scheduler == RankScheduler::stat) {
