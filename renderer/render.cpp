@@ -137,10 +137,11 @@ void run_wave_across_ranks(RankGroup& ranks, RankScheduler scheduler, const Work
   if (scheduler == RankScheduler::stat) {
     take(n * ranks.rank() / ranks.size(), n * (ranks.rank() + 1) / ranks.size());
   } else {
-    // Guided self-scheduling: each batch is half this rank's share of what is left (as the
-    // counter stood at its last request), and at least an item per thread. Few requests while
-    // much is left, small batches at the end, so the ranks finish together even when the
-    // costly tiles come last.
+    // Guided self-scheduling: each batch is half this rank's share of what is left, and at
+    // least an item per thread. Few requests while much is left, small batches at the end,
+    // so the ranks finish together even when the costly tiles come last. What is left, as
+    // this rank can tell without asking again: the counter past its last batch, and past as
+    // many again for each other rank (they took batches meanwhile).
     const std::size_t threads = static_cast<std::size_t>(plan.params.threads), share = 2 * ranks.size();
     auto batch_after = [&](std::size_t counter) { return std::max(threads, (n - std::min(counter, n)) / share); };
     ranks.start_wave(n);
@@ -148,7 +149,7 @@ void run_wave_across_ranks(RankGroup& ranks, RankScheduler scheduler, const Work
       const auto [begin, end] = ranks.next_items(batch);
       if (begin >= end) break;
       take(begin, end);
-      batch = batch_after(begin + batch);
+      batch = batch_after(begin + batch * ranks.size());
     }
   }
   std::vector<Tile> rects;
