@@ -6,6 +6,8 @@
 #include <fstream>
 #include <map>
 #include <set>
+#include <sstream>
+#include <vector>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -123,6 +125,30 @@ TEST_F(MpiProfile, TheCounterBalancesTheRanksWhereStaticBlocksDoNot) {
   EXPECT_LT(balance["static"], 0.8) << "the corner did not fall to one rank: nothing to test";
   EXPECT_GT(balance["dynamic"], 0.85);
   EXPECT_GT(balance["dynamic"], balance["static"] + 0.1);
+}
+
+// tessera scaling over ranks x threads: the runs of several ranks are `tessera render` under
+// mpirun, read back from their statistics; a launcher that cannot run is one clear error.
+TEST_F(MpiProfile, ScalingSweepsRanksAndThreads) {
+  const std::string dir = test::make_temp_dir("mpi-scaling");
+  const std::string scaling = quote(test::tessera_exe()) + " scaling " +
+                              quote(test::scene_path("cornell-box/cornell-box.gltf")) +
+                              " -q --threads-max 1 --schedulers tiles --spp 1 --width 24 --repeat 1 --ranks-max 2 ";
+  const auto r = test::run_command(scaling + "--out " + quote(dir + "/out"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::istringstream csv(slurp(dir + "/out/scaling.csv"));
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line.substr(line.rfind(',')), ",ranks");
+  std::vector<std::string> rows;
+  while (std::getline(csv, line)) rows.push_back(line);
+  ASSERT_EQ(rows.size(), 2u);  // 1 and 2 ranks of one thread
+  EXPECT_EQ(rows[0].substr(rows[0].rfind(',')), ",1");
+  EXPECT_EQ(rows[1].substr(rows[1].rfind(',')), ",2");
+  EXPECT_NE(slurp(dir + "/out/scaling.md").find("| tiles | 2 | 1 |"), std::string::npos);
+  const auto bad = test::run_command(scaling + "--out " + quote(dir + "/bad") + " --launcher 'no-such-launcher -n {}'");
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.err.find("2 ranks: `no-such-launcher` failed with exit code 127"), std::string::npos) << bad.err;
 }
 
 // A time limit stops every rank after the same waves: a millisecond lets the first wave (which

@@ -25,7 +25,7 @@ writing, memory and SMT effects, network contention other than the counter's que
 nodes of unequal speed (each thread runs a tile in the measured CPU time).
 
 Usage: tools/mpi-replay.py STATS.json [--nodes 8,64,512] [--threads 64] [--latency-us 30]
-         [--bandwidth-gbs 1.25] [--bytes-per-pixel 32] [--frame-scale 1] [--service-us 0.5]
+         [--bandwidth-gbs 1.25] [--bytes-per-pixel 28] [--frame-scale 1] [--spp S] [--service-us 0.5]
 Prints a Markdown table. Standard library only.
 """
 
@@ -45,6 +45,19 @@ def wave_costs(stats, frame_scale=1):
     for run in stats["tile_runs"]:
         waves[run["wave"]][run["tile"]] = run["cpu_seconds"]
     return [[waves[w][t] for t in sorted(waves[w])] * frame_scale for w in sorted(waves)]
+
+
+def extend_to_spp(waves, stats, spp):
+    """The waves of an `spp`-sample frame from a shorter measured one: each wave past the
+    measured spp is a 64-sample wave, costed as the measured wave with the most samples
+    scaled to 64 (a tile's cost is proportional to its samples)."""
+    measured = stats["spp"]
+    if spp <= measured:
+        return waves
+    sizes = [w["samples"][1] - w["samples"][0] for w in stats["waves"]]
+    big = max(range(len(sizes)), key=lambda w: sizes[w])
+    wave64 = [c * 64 / sizes[big] for c in waves[big]]
+    return waves + [wave64] * math.ceil((spp - measured) / 64)
 
 
 def run_batch(costs, threads, start):
@@ -112,17 +125,19 @@ def main():
     parser.add_argument("--latency-us", type=float, default=30.0, help="one-way message latency [10 GbE TCP: 30]")
     parser.add_argument("--bandwidth-gbs", type=float, default=1.25, help="each node's link, GB/s [10 GbE: 1.25]")
     parser.add_argument("--service-us", type=float, default=0.5, help="rank 0's time to serve a counter request")
-    parser.add_argument("--bytes-per-pixel", type=int, default=32,
-                        help="sent per pixel per wave: 32 without AOVs (docs/distributed.md)")
+    parser.add_argument("--bytes-per-pixel", type=int, default=28,
+                        help="sent per pixel per wave: 28 without AOVs (docs/distributed.md)")
     parser.add_argument("--frame-scale", type=int, default=1, help="replay a frame this many times larger")
+    parser.add_argument("--spp", type=int, default=0, help="replay a frame of more samples per pixel than measured")
     a = parser.parse_args()
     with open(a.stats) as f:
         stats = json.load(f)
-    waves = wave_costs(stats, a.frame_scale)
+    waves = extend_to_spp(wave_costs(stats, a.frame_scale), stats, a.spp)
     threads = a.threads or stats["threads"]
     frame_bytes = stats["width"] * stats["height"] * a.bytes_per_pixel * a.frame_scale
     total = sum(sum(w) for w in waves)
-    print(f"{a.stats}: {stats['width']}x{stats['height']} x {a.frame_scale}, {len(waves)} waves, "
+    print(f"{a.stats}: {stats['width']}x{stats['height']} x {a.frame_scale}, {max(a.spp, stats['spp'])} spp "
+          f"in {len(waves)} waves, "
           f"{len(waves[0]) if waves else 0} tiles a wave, {total:.3f} CPU s of tiles; {threads} threads a node, "
           f"latency {a.latency_us:g} us, {a.bandwidth_gbs:g} GB/s, {frame_bytes / 1e6:.1f} MB a wave\n")
     print("| nodes | dynamic wall s | dynamic efficiency | static wall s | static efficiency | exchange share |")

@@ -60,6 +60,13 @@ class MeasuredCosts(unittest.TestCase):
         self.assertEqual(replay.wave_costs(stats), [[1.0, 2.0], [3.0, 4.0]])
         self.assertEqual(replay.wave_costs(stats, 2), [[1.0, 2.0, 1.0, 2.0], [3.0, 4.0, 3.0, 4.0]])
 
+    def test_more_samples_add_64_sample_waves_costed_from_the_largest(self):
+        stats = {"spp": 4, "waves": [{"samples": [0, 1]}, {"samples": [1, 2]}, {"samples": [2, 4]}]}
+        waves = [[1.0], [1.0], [2.0]]
+        self.assertEqual(replay.extend_to_spp(waves, stats, 4), waves)
+        # 200 spp: 196 more samples, four waves of 64, each 32 times the two-sample wave.
+        self.assertEqual(replay.extend_to_spp(waves, stats, 200), waves + [[64.0]] * 4)
+
     def test_the_counter_beats_static_blocks_when_the_costly_tiles_come_last(self):
         costs = [C] * 90 + [5 * C] * 10  # the adversarial scene: the costly tiles in a corner
         p = replay.predict([costs], 4, 2, 0.0, 1e-5, 1e9, 1e-6)
