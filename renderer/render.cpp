@@ -3,6 +3,7 @@
 #include <chrono>
 #include <stdexcept>
 #include <thread>
+#include <utility>
 
 #include <tbb/info.h>
 
@@ -130,12 +131,16 @@ void run_wave_across_ranks(RankGroup& ranks, RankScheduler scheduler, const Work
     body(i, thread);
     if (std::this_thread::get_id() == mpi_thread) ranks.progress();
   };
-  auto take = [&](std::size_t begin, std::size_t end) {
-    runner.run_range(begin, end, ranks.rank() == 0 ? serving : body);
-    for (std::size_t i = begin; i < end; ++i) taken.push_back(i);
+  // Each batch given to the threads as it comes (they do not wait at its end).
+  auto take = [&](std::pair<std::size_t, std::size_t> batch) {
+    for (std::size_t i = batch.first; i < batch.second; ++i) taken.push_back(i);
+    return batch;
   };
   if (scheduler == RankScheduler::stat) {
-    take(n * ranks.rank() / ranks.size(), n * (ranks.rank() + 1) / ranks.size());
+    bool given = false;
+    const std::pair<std::size_t, std::size_t> block{n * ranks.rank() / ranks.size(), n * (ranks.rank() + 1) / ranks.size()};
+    runner.run_batches([&] { return std::exchange(given, true) ? std::pair<std::size_t, std::size_t>{0, 0} : take(block); },
+                       ranks.rank() == 0 ? serving : body);
   } else {
     // Guided self-scheduling: each batch is half this rank's share of what is left, and at
     // least an item per thread. Few requests while much is left, small batches at the end,
@@ -145,12 +150,14 @@ void run_wave_across_ranks(RankGroup& ranks, RankScheduler scheduler, const Work
     const std::size_t threads = static_cast<std::size_t>(plan.params.threads), share = 2 * ranks.size();
     auto batch_after = [&](std::size_t counter) { return std::max(threads, (n - std::min(counter, n)) / share); };
     ranks.start_wave(n);
-    for (std::size_t batch = batch_after(0);;) {
-      const auto [begin, end] = ranks.next_items(batch);
-      if (begin >= end) break;
-      take(begin, end);
-      batch = batch_after(begin + batch * ranks.size());
-    }
+    std::size_t batch = batch_after(0);
+    runner.run_batches(
+        [&] {
+          const auto got = ranks.next_items(batch);
+          batch = batch_after(got.first + batch * ranks.size());
+          return take(got);
+        },
+        ranks.rank() == 0 ? serving : body);
   }
   std::vector<Tile> rects;
   for (const WorkItem& item : plan.items) rects.push_back(item.rect);

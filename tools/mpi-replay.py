@@ -69,25 +69,51 @@ def run_batch(costs, threads, start):
 
 
 def dynamic_makespan(costs, nodes, threads, latency, service):
-    """The wave's end under tessera's counter: the last rank's empty answer."""
+    """The wave's end under tessera's counter (WaveRunner::run_batches): each rank's threads
+    take tiles from its queue; its MPI thread (thread 0), whenever it is free and fewer tiles
+    than threads wait, asks for the next batch and waits for the answer, which fills the queue
+    (and wakes the threads that ran out); an empty answer means no more."""
     n, share = len(costs), 2 * nodes
     counter, counter_free, end = 0, 0.0, 0.0
-    seen = [0] * nodes  # where each rank thinks the counter stands
-    asks = [(0.0, r) for r in range(nodes)]  # (time a rank asks, rank)
-    heapq.heapify(asks)
-    while asks:
-        t, r = heapq.heappop(asks)
-        batch = max(threads, (n - min(seen[r], n)) // share)
-        served = max(t + latency / 2, counter_free) + service
-        counter_free = served
-        answer = served + latency / 2
-        begin, stop = min(counter, n), min(counter + batch, n)
-        counter += batch
-        if begin >= stop:
-            end = max(end, answer)
+    queue = [[] for _ in range(nodes)]  # tiles waiting to start, in order (popped from the front)
+    idle = [[] for _ in range(nodes)]  # threads out of work
+    more = [True] * nodes
+    batch = [max(threads, n // share)] * nodes
+    events = [(0.0, r, t, None) for r in range(nodes) for t in range(threads)]  # (time, rank, thread, arrival)
+    heapq.heapify(events)
+
+    def start(r, t, now):
+        nonlocal end
+        if queue[r]:
+            heapq.heappush(events, (now + costs[queue[r].pop(0)], r, t, None))
+        else:
+            idle[r].append(t)
+            end = max(end, now)
+
+    while events:
+        now, r, t, arrival = heapq.heappop(events)
+        if arrival is not None:  # thread 0's answer: the batch joins the queue
+            begin, stop = arrival
+            queue[r].extend(range(begin, stop))
+            woken, idle[r] = sorted(k for k in idle[r] if k != 0), []
+            for k in woken:
+                start(r, k, now)
+            heapq.heappush(events, (now, r, 0, None))  # the MPI thread: ask again, or take a tile
             continue
-        seen[r] = begin + batch * nodes
-        heapq.heappush(asks, (run_batch(costs[begin:stop], threads, answer), r))
+        if t == 0 and more[r] and len(queue[r]) < threads:
+            served = max(now + latency / 2, counter_free) + service
+            counter_free = served
+            begin, stop = min(counter, n), min(counter + batch[r], n)
+            batch[r] = max(threads, (n - min(begin + batch[r] * nodes, n)) // share)
+            counter = max(counter, stop)
+            if begin >= stop:
+                more[r] = False
+                end = max(end, served + latency / 2)
+                start(r, 0, served + latency / 2)
+            else:
+                heapq.heappush(events, (served + latency / 2, r, 0, (begin, stop)))
+            continue
+        start(r, t, now)
     return end
 
 
