@@ -2,13 +2,12 @@
 // and the heat map describe every rank; the dynamic counter balances the ranks where static
 // blocks do not; a time limit, a stopped (hung) rank and a signal end the job as documented in
 // docs/distributed.md, leaving a frame that resumes to the uninterrupted bits.
-#include <cstdio>
 #include <fstream>
 #include <map>
 #include <set>
 #include <sstream>
-#include <vector>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -171,23 +170,15 @@ TEST_F(MpiFaults, ATimeLimitStopsEveryRankAfterTheSameWaves) {
 // written before resumes to the uninterrupted frame's bits.
 TEST_F(MpiFaults, AStoppedRankEndsTheJobWithinTheTimeout) {
   const std::string dir = test::make_temp_dir("mpi-hung");
-  const std::string out = dir + "/h.exr", opts = "-q --spp 256 --checkpoint 0.001 ";
-  std::ofstream(dir + "/stop.sh") << test::signal_script("STOP", "OMPI_COMM_WORLD_RANK=2");
-  const auto r = test::run_command("bash " + quote(dir + "/stop.sh") + " " + quote(out) + " " + mpirun(3) +
-                                   render_args(out, opts + "--rank-timeout 2"));
-  int rc = 0, ms = 0;
-  ASSERT_EQ(std::sscanf(r.out.c_str(), "rc=%d ms=%d", &rc, &ms), 2) << r.out << r.err;
-  const std::string log = slurp(out + ".log");
-  EXPECT_EQ(rc, 1) << log;
-  EXPECT_LT(ms, 15000) << "the timeout is 2 s";
-  EXPECT_GE(ms, 2000) << "gave up before the timeout";
-  EXPECT_EQ(count(log, "has not answered"), 1u) << log;
-  EXPECT_NE(log.find("tessera: error: rank 2 has not answered for 2 s"), std::string::npos) << log;
-  ASSERT_EQ(test::exr_int(out, "partial"), 1) << "no checkpoint before the stop: nothing to test";
-  const auto resumed = test::run_command(render_args(out, opts + "--resume " + quote(out)));
-  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
-  ASSERT_EQ(test::run_command(render_args(dir + "/whole.exr", opts)).exit_code, 0);
-  expect_same_pixels(dir + "/whole.exr", out);
+  const std::string out = dir + "/h.exr", opts = "-q --spp 256 --checkpoint 0.001";
+  const test::SignalledJob job =
+      test::run_signalled(out, "STOP", "OMPI_COMM_WORLD_RANK=2", mpirun(3) + render_args(out, opts + " --rank-timeout 2"));
+  EXPECT_EQ(job.rc, 1) << job.log;
+  EXPECT_LT(job.ms, 15000) << "the timeout is 2 s";
+  EXPECT_GE(job.ms, 2000) << "gave up before the timeout";
+  EXPECT_EQ(count(job.log, "has not answered"), 1u) << job.log;
+  EXPECT_NE(job.log.find("tessera: error: rank 2 has not answered for 2 s"), std::string::npos) << job.log;
+  test::expect_resumes_to_whole(out, opts);
 }
 
 // Ctrl-C at mpirun: Open MPI sends the ranks SIGTERM (a second after SIGCONT). They stop as one
@@ -197,28 +188,21 @@ TEST_F(MpiFaults, AStoppedRankEndsTheJobWithinTheTimeout) {
 // (1024 spp: the job still runs when mpirun's second has passed.)
 TEST_F(MpiFaults, ASignalStopsTheRanksAsItStopsOneProcess) {
   const std::string dir = test::make_temp_dir("mpi-signal");
-  const std::string opts = "--spp 1024 --checkpoint 0.001 ";
+  const std::string opts = "--spp 1024 --checkpoint 0.001";
   const std::pair<std::string, int> cases[] = {{"", 1}, {"OMPI_COMM_WORLD_RANK=", 130}};
   for (const auto& [which, code] : cases) {
     const std::string out = dir + "/s" + std::to_string(code) + ".exr";
-    std::ofstream(dir + "/signal.sh") << test::signal_script(which.empty() ? "INT" : "TERM", which);
-    const auto r = test::run_command("bash " + quote(dir + "/signal.sh") + " " + quote(out) + " " + mpirun(2) +
-                                     render_args(out, opts));
-    int rc = 0, ms = 0;
-    ASSERT_EQ(std::sscanf(r.out.c_str(), "rc=%d ms=%d", &rc, &ms), 2) << r.out << r.err;
-    const std::string log = slurp(out + ".log");
-    EXPECT_EQ(rc, code) << log;
-    EXPECT_LT(ms, 15000);
-    EXPECT_EQ(count(log, "tessera: interrupted: finishing the work in flight"), 1u) << log;
-    EXPECT_NE(log.find("spp; wrote " + out), std::string::npos) << "rank 0 did not write the frame:\n" << log;
-    ASSERT_EQ(test::exr_int(out, "partial"), 1) << log;
+    const test::SignalledJob job =
+        test::run_signalled(out, which.empty() ? "INT" : "TERM", which, mpirun(2) + render_args(out, opts));
+    EXPECT_EQ(job.rc, code) << job.log;
+    EXPECT_GE(job.ms, 0) << job.log;
+    EXPECT_LT(job.ms, 15000);
+    EXPECT_EQ(count(job.log, "tessera: interrupted: finishing the work in flight"), 1u) << job.log;
+    EXPECT_NE(job.log.find("spp; wrote " + out), std::string::npos) << "rank 0 did not write the frame:\n" << job.log;
+    EXPECT_EQ(test::exr_int(out, "partial"), 1) << job.log;
   }
   // The frame stopped through mpirun, finished in one process: the uninterrupted bits.
-  const std::string out = dir + "/s1.exr";
-  const auto resumed = test::run_command(render_args(out, "-q " + opts + "--resume " + quote(out)));
-  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
-  ASSERT_EQ(test::run_command(render_args(dir + "/whole.exr", "-q " + opts)).exit_code, 0);
-  expect_same_pixels(dir + "/whole.exr", out);
+  test::expect_resumes_to_whole(dir + "/s1.exr", "-q " + opts);
 }
 
 }  // namespace

@@ -2,8 +2,6 @@
 // (Open MPI, --oversubscribe on this 2-core machine), against the same render in one process.
 // Every rank renders the tiles it takes from the shared counter (or its block), and after each
 // wave the ranks exchange those tiles' pixels, so the image is the single process's bit for bit.
-#include <cstdio>
-#include <fstream>
 #include <string>
 
 #include "tests/mpi_support.h"
@@ -89,19 +87,12 @@ TEST_F(MpiRender, SequencesHandWholeFramesToRanks) {
 // rank 0 wrote before it resumes, in one process, to the uninterrupted frame's bits.
 TEST_F(MpiRender, AKilledRankEndsTheJobAndTheCheckpointResumes) {
   const std::string dir = test::make_temp_dir("mpi-kill");
-  const std::string out = dir + "/k.exr", opts = "-q --spp 1024 --checkpoint 0.001 ";
-  std::ofstream(dir + "/kill.sh") << test::signal_script("9", "OMPI_COMM_WORLD_RANK=1");
-  const auto r = test::run_command("bash " + quote(dir + "/kill.sh") + " " + quote(out) + " " + mpirun(2) +
-                                   render_args(out, opts));
-  int rc = 0, ms = 0;
-  ASSERT_EQ(std::sscanf(r.out.c_str(), "rc=%d ms=%d", &rc, &ms), 2) << r.out << r.err;
-  EXPECT_NE(rc, 0) << "the job went on without its rank";
-  EXPECT_LT(ms, 60000) << "the job took too long to end";
-  ASSERT_EQ(test::exr_int(out, "partial"), 1) << "no checkpoint before the kill: nothing to test";
-  const auto resumed = test::run_command(render_args(out, opts + "--resume " + quote(out)));
-  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
-  ASSERT_EQ(test::run_command(render_args(dir + "/whole.exr", opts)).exit_code, 0);
-  expect_same_pixels(dir + "/whole.exr", out);
+  const std::string out = dir + "/k.exr", opts = "-q --spp 1024 --checkpoint 0.001";
+  const test::SignalledJob job = test::run_signalled(out, "9", "OMPI_COMM_WORLD_RANK=1", mpirun(2) + render_args(out, opts));
+  EXPECT_NE(job.rc, 0) << "the job went on without its rank";
+  EXPECT_GE(job.ms, 0) << job.log;
+  EXPECT_LT(job.ms, 60000) << "the job took too long to end";
+  test::expect_resumes_to_whole(out, opts);
 }
 
 // Rank 0 speaks for all: one summary; and a scene no rank can read ends the whole job with

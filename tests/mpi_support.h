@@ -4,7 +4,10 @@
 
 #include <unistd.h>
 
+#include <cstdio>
 #include <cstdlib>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -54,6 +57,37 @@ inline std::string signal_script(const std::string& signal, const std::string& w
          "wait $job; rc=$?\n"
          "for p in $signalled; do kill -9 \"$p\" 2> /dev/null; done  # none should be left\n"
          "echo \"rc=$rc ms=$(( ($(date +%s%N) - t0) / 1000000 ))\"\n";
+}
+
+// A job run under signal_script: its exit code, the milliseconds from the signal to its end,
+// and its standard error.
+struct SignalledJob {
+  int rc = -1, ms = -1;
+  std::string log;
+};
+
+inline SignalledJob run_signalled(const std::string& out, const std::string& signal, const std::string& which,
+                                  const std::string& job) {
+  const std::string script = out + ".sh";
+  {
+    std::ofstream(script) << signal_script(signal, which);
+  }
+  const CommandResult r = run_command("bash " + quote(script) + " " + quote(out) + " " + job);
+  SignalledJob j;
+  std::sscanf(r.out.c_str(), "rc=%d ms=%d", &j.rc, &j.ms);
+  std::ifstream in(out + ".log");
+  j.log.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  return j;
+}
+
+// The partial frame `out`, resumed in one process, is the uninterrupted render's, bit for bit.
+inline void expect_resumes_to_whole(const std::string& out, const std::string& opts) {
+  ASSERT_EQ(exr_int(out, "partial"), 1) << "no partial frame before the signal: nothing to test";
+  const CommandResult resumed = run_command(render_args(out, opts + " --resume " + quote(out)));
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  const std::string whole = out + ".whole.exr";
+  ASSERT_EQ(run_command(render_args(whole, opts)).exit_code, 0);
+  expect_same_pixels(whole, out);
 }
 
 class MpiTest : public ::testing::Test {
