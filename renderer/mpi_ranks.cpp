@@ -97,40 +97,8 @@ class MpiRankGroup : public RankGroup {
     return {begin, std::min(begin + batch, count_)};
   }
 
-  std::vector<std::vector<char>> all_gather(const std::vector<char>& mine) override {
-    Timed timed(communication_);
-    const int n = static_cast<int>(mine.size());
-    std::vector<int> sizes(size_), offsets(size_);
-    enter();
-    MPI_Request request;
-    MPI_Iallgather(&n, 1, MPI_INT, sizes.data(), 1, MPI_INT, MPI_COMM_WORLD, &request);
-    wait(request);
-    const int total = place(sizes, offsets);
-    std::vector<char> all(static_cast<std::size_t>(total));
-    enter();
-    MPI_Iallgatherv(mine.data(), n, MPI_CHAR, all.data(), sizes.data(), offsets.data(), MPI_CHAR, MPI_COMM_WORLD,
-                    &request);
-    wait(request);
-    return split(all, sizes, offsets);
-  }
-
-  std::vector<std::vector<char>> gather(const std::vector<char>& mine) override {
-    Timed timed(communication_);
-    const int n = static_cast<int>(mine.size());
-    std::vector<int> sizes(size_), offsets(size_);
-    enter();
-    MPI_Request request;
-    MPI_Igather(&n, 1, MPI_INT, sizes.data(), 1, MPI_INT, 0, MPI_COMM_WORLD, &request);
-    wait(request);
-    const int total = place(sizes, offsets);
-    std::vector<char> all(rank_ == 0 ? static_cast<std::size_t>(total) : 0);
-    enter();
-    MPI_Igatherv(mine.data(), n, MPI_CHAR, all.data(), sizes.data(), offsets.data(), MPI_CHAR, 0, MPI_COMM_WORLD,
-                 &request);
-    wait(request);
-    if (rank_ != 0) return {};
-    return split(all, sizes, offsets);
-  }
+  std::vector<std::vector<char>> all_gather(const std::vector<char>& mine) override { return collect(mine, true); }
+  std::vector<std::vector<char>> gather(const std::vector<char>& mine) override { return collect(mine, false); }
 
   bool any(bool flag) override {
     Timed timed(communication_);
@@ -178,17 +146,38 @@ class MpiRankGroup : public RankGroup {
     wait(request);
   }
 
+  // Every rank's bytes in rank order, on every rank (`everyone`) or on rank 0: the sizes
+  // first, then the bytes.
+  std::vector<std::vector<char>> collect(const std::vector<char>& mine, bool everyone) {
+    Timed timed(communication_);
+    const int n = static_cast<int>(mine.size());
+    std::vector<int> sizes(size_), offsets(size_);
+    MPI_Request request;
+    enter();
+    if (everyone) MPI_Iallgather(&n, 1, MPI_INT, sizes.data(), 1, MPI_INT, MPI_COMM_WORLD, &request);
+    else MPI_Igather(&n, 1, MPI_INT, sizes.data(), 1, MPI_INT, 0, MPI_COMM_WORLD, &request);
+    wait(request);
+    const bool receives = everyone || rank_ == 0;
+    const int total = place(sizes, offsets);
+    std::vector<char> all(receives ? static_cast<std::size_t>(total) : 0);
+    enter();
+    if (everyone)
+      MPI_Iallgatherv(mine.data(), n, MPI_CHAR, all.data(), sizes.data(), offsets.data(), MPI_CHAR, MPI_COMM_WORLD,
+                      &request);
+    else
+      MPI_Igatherv(mine.data(), n, MPI_CHAR, all.data(), sizes.data(), offsets.data(), MPI_CHAR, 0, MPI_COMM_WORLD,
+                   &request);
+    wait(request);
+    if (!receives) return {};
+    std::vector<std::vector<char>> out(size_);
+    for (int r = 0; r < size_; ++r) out[r].assign(all.begin() + offsets[r], all.begin() + offsets[r] + sizes[r]);
+    return out;
+  }
+
   static int place(const std::vector<int>& sizes, std::vector<int>& offsets) {
     int total = 0;
     for (std::size_t r = 0; r < sizes.size(); ++r) offsets[r] = total, total += sizes[r];
     return total;
-  }
-
-  std::vector<std::vector<char>> split(const std::vector<char>& all, const std::vector<int>& sizes,
-                                       const std::vector<int>& offsets) const {
-    std::vector<std::vector<char>> out(size_);
-    for (int r = 0; r < size_; ++r) out[r].assign(all.begin() + offsets[r], all.begin() + offsets[r] + sizes[r]);
-    return out;
   }
 
   // Notes for rank 0's watchdog: counters at rank 0 advanced with the same remote atomic as
