@@ -41,11 +41,12 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
                   "(along a Hilbert curve). Same image with each")
       ->check(CLI::IsMember(tile_order_names()))->capture_default_str();
   cmd->add_option("--stats-json", o.stats_json,
-                  "Write the load-balance statistics as JSON: every tile in every sample wave (thread, start, end, "
-                  "samples, rays), every thread (busy, idle), the frame (wall time, efficiency, imbalance, tail)");
+                  "Write the load-balance statistics as JSON: every tile in every sample wave (rank, thread, start, "
+                  "end, samples, rays), every rank (busy, idle, communication) and thread (busy, idle), the frame "
+                  "(wall time, efficiency, imbalance, tail); under mpirun, every rank's");
   cmd->add_option("--trace", o.trace,
-                  "Write a Chrome trace-event timeline (FILE.json: one track per thread, one slice per tile) "
-                  "for Perfetto (ui.perfetto.dev) or chrome://tracing");
+                  "Write a Chrome trace-event timeline (FILE.json: one track per thread, one slice per tile; under "
+                  "mpirun one process per rank) for Perfetto (ui.perfetto.dev) or chrome://tracing");
   cmd->add_option("--heatmap", o.heatmap,
                   "Write the CPU time spent on each tile as a colour map with pixel axes and a colour bar in ms or s "
                   "(FILE.png or any 8-bit image format; FILE.svg for a vector drawing)");
@@ -108,7 +109,7 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
       ->capture_default_str();
   cmd->add_option("--rank-timeout", o.rank_timeout,
                   "Under mpirun: end the job (exit 1, naming the rank) when a rank has given no sign of life for "
-                  "this many seconds while rank 0 waits for it (a stopped or hung node); it must exceed the longest "
+                  "this many seconds while another waits for it (a stopped or hung node); it must exceed the longest "
                   "a rank works without contacting rank 0: a batch of tiles, a static block, a wave of a whole "
                   "frame (0: wait forever)")
       ->check(CLI::Range(0.0, 1e9))

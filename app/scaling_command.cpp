@@ -30,8 +30,8 @@ namespace tessera {
 
 void add_scaling_command(CLI::App& app, ScalingOptions& o) {
   CLI::App* cmd = app.add_subcommand(
-      "scaling", "Render a scene with 1..N threads and each scheduler; write speedup and efficiency as "
-                 "DIR/scaling.md, DIR/scaling.csv and a plot DIR/scaling.svg.");
+      "scaling", "Render a scene with 1..N threads (and 1..R MPI ranks) and each scheduler; write speedup and "
+                 "efficiency as DIR/scaling.md, DIR/scaling.csv and a plot DIR/scaling.svg.");
   cmd->add_option("scene", o.scene_path, "The glTF file to render")->required();
   cmd->add_option("--threads-max", o.threads_max, "Most threads (may exceed the cores) [default: the core count]")
       ->check(CLI::Range(1, 1024));

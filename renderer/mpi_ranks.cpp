@@ -180,43 +180,44 @@ class MpiRankGroup : public RankGroup {
     return total;
   }
 
-  // Notes for rank 0's watchdog: counters at rank 0 advanced with the same remote atomic as
-  // the work counter (MPI_Fetch_and_op, MPI_SUM), which needs nothing of rank 0 while it
-  // renders; other one-sided operations may wait for rank 0 to enter MPI, serialising the ranks.
+  // Notes for the watchdog: counters at rank 0 advanced with the same remote atomic as the
+  // work counter (MPI_Fetch_and_op, MPI_SUM), which needs nothing of rank 0 while it renders;
+  // other one-sided operations may wait for rank 0 to enter MPI, serialising the ranks.
   void add_at_rank0(MPI_Aint slot) {
     const long long one = 1;
     long long before = 0;
-    if (rank_ != 0) MPI_Fetch_and_op(&one, &before, MPI_LONG_LONG, 0, slot, MPI_SUM, window_);
+    MPI_Fetch_and_op(&one, &before, MPI_LONG_LONG, 0, slot, MPI_SUM, window_);
   }
   void note_beat() { add_at_rank0(beats_slot(rank_)); }
   // Before each collective call: every rank makes the same calls, so their counts agree.
   void enter() {
     ++calls_;
-    if (rank_ == 0) return;
     note_beat();
     add_at_rank0(arrived_slot(rank_));
     MPI_Win_flush(0, window_);
   }
 
-  // Rank 0's view of the notes: [arrived, beats] per rank.
-  std::vector<long long> read_notes() {
-    std::vector<long long> notes(2 * static_cast<std::size_t>(size_));
+  // The notes of ranks [first, first + count): [arrived, beats] each.
+  std::vector<long long> read_notes(int first, int count) {
+    std::vector<long long> notes(2 * static_cast<std::size_t>(count));
     MPI_Get_accumulate(nullptr, 0, MPI_LONG_LONG, notes.data(), static_cast<int>(notes.size()), MPI_LONG_LONG, 0,
-                       arrived_slot(0), static_cast<int>(notes.size()), MPI_LONG_LONG, MPI_NO_OP, window_);
+                       arrived_slot(first), static_cast<int>(notes.size()), MPI_LONG_LONG, MPI_NO_OP, window_);
     MPI_Win_flush(0, window_);
     return notes;
   }
 
-  // MPI_Wait with a deadline. Rank 0 names and gives up on the ranks that have not reached
-  // this call and have shown no sign of life for the timeout; another rank gives up when
-  // the call has not completed in twice the timeout (rank 0 itself may be the one stopped).
+  // MPI_Wait with a watchdog. A waiting rank gives signs of life itself, and looks at the
+  // notes: rank 0 gives up on the ranks that have not entered this call and have given no sign
+  // of life for the timeout, naming them; another rank gives up when rank 0 has given none for
+  // the timeout (while it waits for a healthy rank, rank 0 gives them).
   void wait(MPI_Request& request) {
     int done = 0;
     MPI_Test(&request, &done, MPI_STATUS_IGNORE);
     if (done) return;
     const Clock::time_point start = Clock::now();
-    std::vector<long long> beats(size_, -1);
-    std::vector<Clock::time_point> seen(size_, start);
+    const int watched = rank_ == 0 ? size_ : 1;  // rank 0 watches every rank; the others, rank 0
+    std::vector<long long> beats(watched, -1);
+    std::vector<Clock::time_point> seen(watched, start);
     Clock::time_point looked = start;
     for (;;) {
       MPI_Test(&request, &done, MPI_STATUS_IGNORE);
@@ -224,17 +225,13 @@ class MpiRankGroup : public RankGroup {
       if (seconds_since(start) > kSpinSeconds) std::this_thread::sleep_for(kNap);
       if (timeout_ <= 0.0 || seconds_since(looked) < kWatchEvery) continue;
       looked = Clock::now();
-      if (rank_ != 0) {
-        if (seconds_since(start) > 2 * timeout_)
-          throw RankTimeout(fmt_seconds("no answer from the other ranks for ", 2 * timeout_) +
-                            " (rank 0, which watches them, may be stopped or hung): ending the job");
-        continue;
-      }
-      const std::vector<long long> notes = read_notes();
+      note_beat();
+      const std::vector<long long> notes = read_notes(0, watched);
       std::vector<int> late;
-      for (int r = 1; r < size_; ++r) {
+      for (int r = 0; r < watched; ++r) {
+        if (r == rank_) continue;
         if (notes[2 * r + 1] != beats[r]) beats[r] = notes[2 * r + 1], seen[r] = looked;
-        if (notes[2 * r] < calls_ && seconds_since(seen[r]) > timeout_) late.push_back(r);
+        if ((rank_ != 0 || notes[2 * r] < calls_) && seconds_since(seen[r]) > timeout_) late.push_back(r);
       }
       if (!late.empty())
         throw RankTimeout(rank_list(late) + fmt_seconds(late.size() == 1 ? " has not answered for " : " have not answered for ", timeout_) +

@@ -15,7 +15,7 @@ namespace tessera {
 // then is MPI initialised, so a plain run pays nothing for it.
 bool launched_by_mpi();
 
-// A rank stopped answering: the watchdog's verdict, naming it (thrown on rank 0).
+// A rank stopped answering: the watchdog's verdict, naming it.
 struct RankTimeout : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
@@ -31,8 +31,8 @@ class MpiSession {
   // The world's ranks as a RankGroup (the window is created collectively: every rank calls).
   // Its watchdog: rank 0, waiting in a collective call, throws RankTimeout naming the ranks
   // that have not reached the call and have given no sign of life (a call, a batch taken, a
-  // wave of a frame rendered alone) for `timeout` seconds; another rank throws when a call
-  // has not completed in twice that (rank 0 may be the one stopped). 0: no watchdog.
+  // wave of a frame rendered alone, waiting) for `timeout` seconds; another rank, waiting,
+  // throws when rank 0 has given none for that long. 0: no watchdog.
   std::unique_ptr<RankGroup> ranks(double timeout) const;
   // Ends every rank's process (MPI_Abort), e.g. when this rank failed and the others wait.
   [[noreturn]] static void abort_all(int exit_code);

@@ -181,6 +181,18 @@ TEST_F(MpiFaults, AStoppedRankEndsTheJobWithinTheTimeout) {
   test::expect_resumes_to_whole(out, opts);
 }
 
+// A sequence with whole frames to ranks: a rank that has finished its frames waits for the
+// others' (up to a whole frame) with the watchdog on; the others give a sign of life between
+// waves, so a frame longer than the timeout is no fault, and the job ends well.
+TEST_F(MpiFaults, RanksRenderingWholeFramesAreAliveBetweenWaves) {
+  const std::string dir = test::make_temp_dir("mpi-alive");
+  const auto r = test::run_command(mpirun(2) + render_args(dir + "/f.#.exr", "--frames 0:2 --spp 1024 --rank-timeout 0.5"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("3 rendered by 2 ranks"), std::string::npos) << r.err;
+  const double render = std::stod(r.err.substr(r.err.find("render ") + 7));  // a frame's render seconds
+  EXPECT_GT(render, 0.5) << "a frame took less than the timeout: nothing to test";
+}
+
 // Ctrl-C at mpirun: Open MPI sends the ranks SIGTERM (a second after SIGCONT). They stop as one
 // process does: the tiles in flight finish, rank 0 writes the partial frame and says so once,
 // and the frame resumes to the uninterrupted bits. mpirun's own exit code is 1 for a job it
