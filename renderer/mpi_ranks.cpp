@@ -41,7 +41,7 @@ MPI_Aint beats_slot(int rank) { return arrived_slot(rank) + 1; }
 // between tests, giving its core to ranks that still render (an oversubscribed machine).
 constexpr double kSpinSeconds = 0.01;
 constexpr auto kNap = std::chrono::microseconds(200);
-constexpr double kWatchEvery = 0.05;  // seconds between rank 0's looks at the notes
+constexpr double kWatchEvery = 0.05;  // seconds between a waiting rank's looks at the notes
 
 std::string rank_list(const std::vector<int>& ranks) {
   std::string s = ranks.size() == 1 ? "rank " : "ranks ";
