@@ -96,34 +96,34 @@ TEST_F(MpiProfile, StatsJsonAndTraceDescribeEveryRank) {
 }
 
 // The paper's adversarial scene puts nearly all the work in one corner: static blocks give it
-// to one rank, the counter shares it. Measured as the ranks' balance, mean over most busy
-// time (time in tiles): the cluster's efficiency were communication free. Busy time, not CPU
-// time: on this shared machine a rank the others' processes slow down takes fewer tiles from
-// the counter, so the counter evens out the ranks' busy time, which is what the frame waits for.
-double rank_balance(const json& stats) {
+// to one rank, the counter shares it. Measured as the ranks' balance, mean over most: the
+// cluster's efficiency were communication free. Static blocks fix each rank's tiles, so their
+// CPU time is the split, whatever else ran on this shared machine. The counter gives tiles to
+// whichever rank is free, so it evens out the ranks' busy time (time in tiles), which is what
+// the frame waits for; a rank the machine's other processes slow down takes fewer tiles.
+double rank_balance(const json& stats, const char* seconds) {
   double sum = 0.0, most = 0.0;
   for (const json& rank : stats["per_rank"]) {
-    sum += rank["busy_seconds"].get<double>();
-    most = std::max(most, rank["busy_seconds"].get<double>());
+    sum += rank[seconds].get<double>();
+    most = std::max(most, rank[seconds].get<double>());
   }
   return sum / (stats["per_rank"].size() * most);
 }
 
 TEST_F(MpiProfile, TheCounterBalancesTheRanksWhereStaticBlocksDoNot) {
   const std::string dir = test::make_temp_dir("mpi-balance");
-  std::map<std::string, double> balance;
+  std::map<std::string, json> stats;
   for (const std::string scheduler : {"dynamic", "static"}) {
-    const std::string stats = dir + "/" + scheduler + ".json";
+    const std::string file = dir + "/" + scheduler + ".json";
     const auto r = test::run_command(mpirun(2) + quote(test::tessera_exe()) + " render " +
                                      quote(test::scene_path("paper/adversarial.gltf")) +
                                      " -q --width 96 --spp 64 --threads 1 --tile-size 8 --rank-scheduler " + scheduler +
-                                     " -o " + quote(dir + "/" + scheduler + ".exr") + " --stats-json " + quote(stats));
+                                     " -o " + quote(dir + "/" + scheduler + ".exr") + " --stats-json " + quote(file));
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    balance[scheduler] = rank_balance(read_json(stats));
+    stats[scheduler] = read_json(file);
   }
-  EXPECT_LT(balance["static"], 0.8) << "the corner did not fall to one rank: nothing to test";
-  EXPECT_GT(balance["dynamic"], 0.85);
-  EXPECT_GT(balance["dynamic"], balance["static"] + 0.1);
+  EXPECT_LT(rank_balance(stats["static"], "cpu_seconds"), 0.75) << "the corner did not fall to one rank";
+  EXPECT_GT(rank_balance(stats["dynamic"], "busy_seconds"), 0.85);
 }
 
 // tessera scaling over ranks x threads: the runs of several ranks are `tessera render` under
@@ -183,14 +183,21 @@ TEST_F(MpiFaults, AStoppedRankEndsTheJobWithinTheTimeout) {
 
 // A sequence with whole frames to ranks: a rank that has finished its frames waits for the
 // others' (up to a whole frame) with the watchdog on; the others give a sign of life between
-// waves, so a frame longer than the timeout is no fault, and the job ends well.
+// waves, so a frame longer than the timeout is no fault, and the job ends well. The timeout is
+// a quarter of a frame as measured first in one process: 16 times a wave (4096 spp are 64
+// waves), a quarter of the wait, whatever the machine's speed and load.
 TEST_F(MpiFaults, RanksRenderingWholeFramesAreAliveBetweenWaves) {
   const std::string dir = test::make_temp_dir("mpi-alive");
-  const auto r = test::run_command(mpirun(2) + render_args(dir + "/f.#.exr", "--frames 0:2 --spp 1024 --rank-timeout 0.5"));
-  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string small = quote(test::tessera_exe()) + " render " + quote(test::scene_path("cornell-box/cornell-box.gltf")) +
+                            " --width 20 --height 18 --spp 4096 ";
+  const auto one = test::run_command(small + "--frame 0 -o " + quote(dir + "/one.exr"));
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  const double frame = std::stod(one.err.substr(one.err.find(", render ") + 9));
+  const double timeout = std::max(0.2, frame / 4);
+  const auto r = test::run_command(mpirun(2) + small + "--frames 0:2 -o " + quote(dir + "/f.#.exr") + " --rank-timeout " +
+                                   std::to_string(timeout));
+  ASSERT_EQ(r.exit_code, 0) << "timeout " << timeout << " s\n" << r.err;
   EXPECT_NE(r.err.find("3 rendered by 2 ranks"), std::string::npos) << r.err;
-  const double render = std::stod(r.err.substr(r.err.find("render ") + 7));  // a frame's render seconds
-  EXPECT_GT(render, 0.5) << "a frame took less than the timeout: nothing to test";
 }
 
 // Ctrl-C at mpirun: Open MPI sends the ranks SIGTERM (a second after SIGCONT). They stop as one

@@ -87,7 +87,7 @@ TEST_F(MpiRender, SequencesHandWholeFramesToRanks) {
 // rank 0 wrote before it resumes, in one process, to the uninterrupted frame's bits.
 TEST_F(MpiRender, AKilledRankEndsTheJobAndTheCheckpointResumes) {
   const std::string dir = test::make_temp_dir("mpi-kill");
-  const std::string out = dir + "/k.exr", opts = "-q --spp 1024 --checkpoint 0.001";
+  const std::string out = dir + "/k.exr", opts = "-q --spp 256 --checkpoint 0.001";
   const test::SignalledJob job = test::run_signalled(out, "9", "OMPI_COMM_WORLD_RANK=1", mpirun(2) + render_args(out, opts));
   EXPECT_NE(job.rc, 0) << "the job went on without its rank";
   EXPECT_GE(job.ms, 0) << job.log;
