@@ -21,4 +21,9 @@ std::vector<Colour> viridis_ramp(int n) {
   return viridis(t);
 }
 
+Colour category_colour(std::size_t index) {
+  constexpr unsigned kColours[kCategoryColours] = {0x0072B2, 0xD55E00, 0x009E73, 0xCC79A7, 0xE69F00, 0x56B4E9};
+  return hex_colour(kColours[index % kCategoryColours]);
+}
+
 }  // namespace tessera

@@ -21,6 +21,7 @@ struct RenderOptions {
   int tile_size = 32;
   std::string scheduler = "tiles", tile_order = "scanline";
   std::string stats_json, trace, heatmap;  // load-balancing outputs, empty: none
+  std::string heatmap_by = "cost";  // cost or rank
   long long seed = 0;
   std::string sampler = "sobol";
   std::string pixel_filter = "blackman-harris";
@@ -36,6 +37,7 @@ struct RenderOptions {
   std::string shutter;  // --shutter OPEN,CLOSE in frames; empty: no motion blur
   std::string crop;  // --crop X0,X1,Y0,Y1 (fractions of the frame); empty: the whole frame
   std::string rank_scheduler = "dynamic";  // under MPI: dynamic (a shared counter) or static
+  double rank_timeout = 600.0;  // under MPI: seconds without a sign of life before a rank is given up
   std::string view_transform = "filmic";  // display formats: the built-in view
   std::string ocio_config, ocio_display, ocio_view;  // a studio's OCIO config and its view
   int motion_steps = 3;
@@ -87,6 +89,8 @@ struct BenchOptions {
 struct ScalingOptions {
   std::string scene_path;
   int threads_max = 0;  // 0 = the core count
+  int ranks_max = 1;  // > 1: also 2..ranks_max MPI ranks, launched with `launcher`
+  std::string launcher = "mpirun --bind-to none --oversubscribe -np {}";  // {}: the rank count
   std::vector<std::string> schedulers = {"tiles", "chunks", "counter", "interleaved"};
   std::string tile_order = "scanline";
   std::string envmap;

@@ -7,7 +7,7 @@ namespace tessera {
 
 enum ExitCode : int {
   kExitSuccess = 0,
-  kExitFailure = 1,  // internal failure, or the system failed us (out of memory, disk full)
+  kExitFailure = 1,  // internal failure, or the system failed us (out of memory, disk full, a hung MPI rank)
   kExitBadInput = 2,  // bad usage, bad option value, unreadable or malformed input
   kExitInterrupted = 130,  // stopped by SIGINT/SIGTERM
 };

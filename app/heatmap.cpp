@@ -47,6 +47,7 @@ Layout layout(const HeatmapPlot& p) {
   l.bar_h = std::max(l.map_h, 160.0);
   double labels = 0.0;
   for (double v : p.bar_ticks) labels = std::max(labels, text_width(number(v), kLabel));
+  for (const LegendEntry& e : p.legend) labels = std::max(labels, text_width(e.label, kLabel));
   const double legend_right = l.bar_x + kBarWidth + kTick + 4 + labels + 8 + kLabel.size + kMargin;
   l.bottom = l.map_y + std::max(l.map_h + kTick + 2 * kSmall.size + 12, l.bar_h);
   l.width = static_cast<int>(std::ceil(std::max({legend_right, 2 * kMargin + text_width(p.summary, kLabel),
@@ -98,8 +99,41 @@ void draw_colour_bar(Chart& c, const HeatmapPlot& p, const Layout& l) {
     c.text({right + kTick + 4, y + 4}, number(v), kLabel, kInk);
     labels = std::max(labels, text_width(number(v), kLabel));
   }
-  c.text({right + kTick + 4 + labels + 8 + kLabel.size, top + l.bar_h / 2}, "CPU time per tile (" + p.unit + ")",
-         kLabel, kInk, Align::centre, 90.0);
+  c.text({right + kTick + 4 + labels + 8 + kLabel.size, top + l.bar_h / 2}, p.bar_label, kLabel, kInk, Align::centre,
+         90.0);
+}
+
+// A swatch and a label per rank, where the colour bar would be.
+void draw_legend(Chart& c, const HeatmapPlot& p, const Layout& l) {
+  double y = l.map_y;
+  for (const LegendEntry& e : p.legend) {
+    c.rect(l.bar_x, y, kBarWidth, kBarWidth, e.colour);
+    c.outline(l.bar_x - 0.5, y - 0.5, kBarWidth + 1, kBarWidth + 1, kInk);
+    c.text({l.bar_x + kBarWidth + 8, y + kBarWidth / 2 + 4}, e.label, kLabel, kInk);
+    y += kBarWidth + 8;
+  }
+}
+
+// Each tile in its rank's colour: categories for a few ranks, else viridis over the rank.
+void colour_by_rank(HeatmapPlot& p, const FrameProfile& profile) {
+  const int ranks = static_cast<int>(std::max<std::size_t>(1, profile.ranks.size()));
+  for (std::size_t i = 0; i < p.cells.size(); ++i) p.cells[i].rank = profile.tile_rank.empty() ? 0 : profile.tile_rank[i];
+  p.summary = fmt::format("tile colour: the rank that spent the most CPU time on it; {} rank{}, cluster efficiency {:.1f}%",
+                          ranks, ranks == 1 ? "" : "s", 100.0 * profile.balance.efficiency);
+  p.bar_ticks.clear();
+  if (ranks <= kCategoryColours) {
+    for (HeatmapCell& cell : p.cells) cell.colour = category_colour(cell.rank);
+    for (int r = 0; r < ranks; ++r) p.legend.push_back({"rank " + std::to_string(r), category_colour(r)});
+    return;
+  }
+  std::vector<double> t;
+  for (const HeatmapCell& cell : p.cells) t.push_back(static_cast<double>(cell.rank) / (ranks - 1));
+  const std::vector<Colour> colours = viridis(t);
+  for (std::size_t i = 0; i < p.cells.size(); ++i) p.cells[i].colour = colours[i];
+  p.unit = "rank";
+  p.bar_label = "rank";
+  p.bar_max = ranks - 1;
+  p.bar_ticks = ticks(0, p.bar_max, std::max(1.0, tick_step(p.bar_max, 5)));
 }
 
 }  // namespace
@@ -120,6 +154,8 @@ HeatmapPlot heatmap_plot(const FrameProfile& profile, const HeatmapParams& param
   p.unit = max >= 1.0 ? "s" : "ms";
   p.bar_max = max * scale;
   if (p.bar_max > 0) p.bar_ticks = ticks(0, p.bar_max, tick_step(p.bar_max, 5));
+  p.bar_label = "CPU time per tile (" + p.unit + ")";
+  if (params.by == HeatmapBy::rank) colour_by_rank(p, profile);
   return p;
 }
 
@@ -130,7 +166,8 @@ void write_heatmap(const std::string& path, const FrameProfile& profile, const H
   c.text({kMargin, kMargin + kTitle.size}, p.title, kTitle, kInk);
   draw_tiles(c, p, l);
   draw_pixel_axes(c, p, l);
-  draw_colour_bar(c, p, l);
+  if (p.legend.empty()) draw_colour_bar(c, p, l);
+  else draw_legend(c, p, l);
   c.text({kMargin, l.bottom + 14 + kLabel.size}, p.summary, kLabel, kInk);
   c.write();
 }

@@ -11,6 +11,7 @@ namespace {
 
 std::atomic<std::atomic<bool>*> g_cancel{nullptr};
 volatile std::sig_atomic_t g_signals = 0;
+volatile std::sig_atomic_t g_quiet = 0;
 
 static_assert(std::atomic<bool>::is_always_lock_free, "the signal handler stores to it");
 static_assert(std::atomic<std::atomic<bool>*>::is_always_lock_free, "the signal handler loads it");
@@ -18,13 +19,13 @@ static_assert(std::atomic<std::atomic<bool>*>::is_always_lock_free, "the signal 
 void on_signal(int) {
   if (g_signals++ > 0) {
     static const char kMessage[] = "\ntessera: interrupted again: exiting now\n";
-    (void)!::write(STDERR_FILENO, kMessage, sizeof kMessage - 1);
+    if (!g_quiet) (void)!::write(STDERR_FILENO, kMessage, sizeof kMessage - 1);
     remove_temporary_files();  // a write in progress leaves nothing behind
     ::_exit(130);
   }
   static const char kMessage[] =
       "\ntessera: interrupted: finishing the work in flight, then writing what is done (again to quit now)\n";
-  (void)!::write(STDERR_FILENO, kMessage, sizeof kMessage - 1);
+  if (!g_quiet) (void)!::write(STDERR_FILENO, kMessage, sizeof kMessage - 1);
   if (std::atomic<bool>* cancel = g_cancel.load()) cancel->store(true, std::memory_order_relaxed);
 }
 
@@ -40,6 +41,8 @@ void install_interrupt_handlers() {
   if (sigaction(SIGINT, nullptr, &old) == 0 && old.sa_handler != SIG_IGN) sigaction(SIGINT, &sa, nullptr);
   sigaction(SIGTERM, &sa, nullptr);
 }
+
+void quiet_interrupt_messages() { g_quiet = 1; }
 
 InterruptHandler::InterruptHandler(std::atomic<bool>& cancel) {
   g_cancel.store(&cancel);

@@ -12,6 +12,9 @@ namespace tessera {
 
 void install_interrupt_handlers();
 
+// The ranks of an MPI job other than rank 0 stop as told but say nothing: rank 0 speaks for all.
+void quiet_interrupt_messages();
+
 // While alive, a first signal sets `cancel` (at once if one has already arrived).
 class InterruptHandler {
  public:

@@ -54,11 +54,15 @@ int main(int argc, char** argv) {
   try {
     if (launched_by_mpi()) {
       mpi = std::make_unique<MpiSession>(argc, argv);
-      if (mpi->rank() > 0) who = fmt::format("rank {}: ", mpi->rank());
+      if (mpi->rank() > 0) {
+        who = fmt::format("rank {}: ", mpi->rank());
+        quiet_interrupt_messages();
+      }
     }
     if (app.got_subcommand("render")) {
-      if (mpi) ranks = mpi->ranks();
+      if (mpi) ranks = mpi->ranks(render.rank_timeout);
       const int code = run_render(render, ranks.get());
+      if (ranks) ranks->barrier();  // watched: freeing the window below waits for every rank unwatched
       ranks.reset();  // its window is freed collectively, before MPI_Finalize
       return code;
     }

@@ -1,7 +1,6 @@
 #include "app/profile_outputs.h"
 
 #include "app/chart.h"
-#include "app/heatmap.h"
 #include "renderer/file_output.h"
 #include "renderer/profile_json.h"
 
@@ -16,7 +15,7 @@ void check_profile_outputs(const ProfileOutputs& o) {
 void write_profile_outputs(const ProfileOutputs& o, const RenderResult& result, const std::string& title) {
   if (!o.stats_json.empty()) write_stats_json(o.stats_json, result.profile, result.stats);
   if (!o.trace.empty()) write_trace_json(o.trace, result.profile);
-  if (!o.heatmap.empty()) write_heatmap(o.heatmap, result.profile, {title});
+  if (!o.heatmap.empty()) write_heatmap(o.heatmap, result.profile, {title, o.heatmap_by});
 }
 
 }  // namespace tessera

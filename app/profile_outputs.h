@@ -3,12 +3,14 @@
 
 #include <string>
 
+#include "app/heatmap.h"
 #include "renderer/render.h"
 
 namespace tessera {
 
 struct ProfileOutputs {
   std::string stats_json, trace, heatmap;  // empty: not wanted
+  HeatmapBy heatmap_by = HeatmapBy::cost;
   bool needs_tile_records() const { return !stats_json.empty() || !trace.empty(); }
 };
 

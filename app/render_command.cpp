@@ -257,17 +257,32 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
       ->check(CLI::IsMember({"dynamic", "static"}))
       ->capture_default_str()
       ->group("Threads and profiling");
+  cmd->add_option("--rank-timeout", o.rank_timeout,
+                  "Under mpirun: end the job (exit 1, naming the rank) when a rank has given no sign of life for "
+                  "this many seconds while another waits for it (a stopped or hung node); it must exceed the longest "
+                  "a rank works without contacting rank 0: a batch of tiles, a static block, a wave of a whole "
+                  "frame (0: wait forever)")
+      ->check(CLI::Range(0.0, 1e9))
+      ->capture_default_str()
+      ->group("Threads and profiling");
   cmd->add_option("--stats-json", o.stats_json,
-                  "Write the load-balance statistics as JSON: every tile in every sample wave (thread, start, end, "
-                  "samples, rays), every thread (busy, idle), the frame (wall time, efficiency, imbalance, tail)")
+                  "Write the load-balance statistics as JSON: every tile in every sample wave (rank, thread, start, "
+                  "end, samples, rays), every rank (busy, idle, communication) and thread (busy, idle), the frame "
+                  "(wall time, efficiency, imbalance, tail); under mpirun, every rank's")
       ->group("Threads and profiling");
   cmd->add_option("--trace", o.trace,
-                  "Write a Chrome trace-event timeline (FILE.json: one track per thread, one slice per tile) "
-                  "for Perfetto (ui.perfetto.dev) or chrome://tracing")
+                  "Write a Chrome trace-event timeline (FILE.json: one track per thread, one slice per tile; under "
+                  "mpirun one process per rank) for Perfetto (ui.perfetto.dev) or chrome://tracing")
       ->group("Threads and profiling");
   cmd->add_option("--heatmap", o.heatmap,
                   "Write the CPU time spent on each tile as a colour map with pixel axes and a colour bar in ms or s "
                   "(FILE.png or any 8-bit image format; FILE.svg for a vector drawing)")
+      ->group("Threads and profiling");
+  cmd->add_option("--heatmap-by", o.heatmap_by,
+                  "What the heat map's colours show: cost (CPU time per tile) or rank (under mpirun: the rank that "
+                  "spent the most CPU time on the tile)")
+      ->check(CLI::IsMember({"cost", "rank"}))
+      ->capture_default_str()
       ->group("Threads and profiling");
   cmd->footer(
       "Examples:\n"
@@ -363,7 +378,8 @@ int run_render(const RenderOptions& options, RankGroup* ranks) {
     }
     const bool first = rendered == 0;
     const FrameJobResult done = render_frame_job(
-        f.options, {&document, framing.empty() ? nullptr : &framing, f.label, first, &scene_cache, tile_ranks});
+        f.options, {&document, framing.empty() ? nullptr : &framing, f.label, first, &scene_cache, tile_ranks,
+                                 whole_frames ? ranks : nullptr});
     ++rendered;
     interrupted = done.interrupted;
   }

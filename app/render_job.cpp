@@ -39,6 +39,28 @@ void print_adaptive_summary(const RenderSettings& settings, const RenderResult& 
       100.0 * total / (pixels * settings.spp), settings.spp));
 }
 
+// A distributed render: the cluster's efficiency and each rank's time (the extremes only for
+// many ranks: --stats-json has them all).
+void print_rank_summary(const FrameProfile& p) {
+  constexpr std::size_t kListed = 8;
+  auto describe = [](const RankStats& r) {
+    return fmt::format("rank {} busy {:.3f} s, idle {:.3f} s, communication {:.3f} s ({:.1f}%)", r.rank, r.busy, r.idle,
+                       r.communication, 100.0 * r.efficiency);
+  };
+  std::vector<RankStats> shown = p.ranks;
+  if (shown.size() > kListed) {
+    auto [least, most] = std::minmax_element(shown.begin(), shown.end(),
+                                             [](const RankStats& a, const RankStats& b) { return a.efficiency < b.efficiency; });
+    shown = {*least, *most};
+  }
+  std::string list;
+  for (const RankStats& r : shown) list += "; " + describe(r);
+  print_status(fmt::format("tessera: {} ranks: cluster efficiency {:.1f}% (busy / (threads x wall), wall {:.3f} s){}{}",
+                           p.ranks.size(), 100.0 * p.balance.efficiency, p.balance.wall,
+                           p.ranks.size() > kListed ? "; least and most efficient: " : "",
+                           p.ranks.size() > kListed ? list.substr(2) : list));
+}
+
 void print_summary(const RenderOptions& o, const FramePlan& to, const RenderSettings& settings,
                    const RenderResult& result) {
   const std::string& output = to.output;
@@ -51,6 +73,7 @@ void print_summary(const RenderOptions& o, const FramePlan& to, const RenderSett
       settings.tile_size, s.camera_samples / s.seconds * 1e-6, s.rays / s.seconds * 1e-6,
       scheduler_name(settings.scheduler), tile_order_name(settings.tile_order), 100.0 * s.efficiency, s.imbalance,
       s.dropped_samples ? fmt::format(", {} non-finite samples dropped", s.dropped_samples) : ""));
+  if (!result.profile.ranks.empty()) print_rank_summary(result.profile);
   if (settings.adaptive.on()) print_adaptive_summary(settings, result);
   std::string why;
   if (s.cancelled) why = fmt::format("interrupted at {} spp; ", spp);
@@ -98,7 +121,8 @@ FrameJobResult render_frame_job(const RenderOptions& options, const FrameJob& jo
   RenderOptions o = options;
   o.quiet = o.quiet || !leader;
   const std::string resumed_settings = check_frame_files(o);
-  const ProfileOutputs profile_outputs{o.stats_json, o.trace, o.heatmap};
+  const ProfileOutputs profile_outputs{o.stats_json, o.trace, o.heatmap,
+                                       o.heatmap_by == "rank" ? HeatmapBy::rank : HeatmapBy::cost};
 
   LoadedScene loaded = load_scene(o, *job.document, job.print_warnings && leader);
   FramePlan plan = plan_frame(o, loaded.gltf, job.framing);
@@ -118,6 +142,7 @@ FrameJobResult render_frame_job(const RenderOptions& options, const FrameJob& jo
                                           settings.window, stored_spp(resumed_settings)});
   }
   settings.ranks = job.ranks;
+  settings.alive_in = job.alive_in;
   settings.rank_scheduler = o.rank_scheduler == "static" ? RankScheduler::stat : RankScheduler::dynamic;
   if (o.checkpoint > 0.0 && leader) {
     settings.checkpoint_interval = o.checkpoint;
@@ -151,8 +176,10 @@ FrameJobResult render_frame_job(const RenderOptions& options, const FrameJob& jo
   if (!leader) return {interrupts.interrupted()};
   if (plan.cost_layer) result.image.cost = tile_cost_image(result.profile);
   write_profile_outputs(profile_outputs, result,
-                        fmt::format("{}: {}, {}, {} threads", std::filesystem::path(o.scene_path).filename().string(),
-                                    o.scheduler, o.tile_order, result.stats.threads));
+                        fmt::format("{}: {}, {}, {}{} threads", std::filesystem::path(o.scene_path).filename().string(),
+                                    o.scheduler, o.tile_order,
+                                    result.stats.ranks > 1 ? fmt::format("{} ranks x ", result.stats.ranks) : "",
+                                    result.stats.threads));
   double denoise_seconds = 0.0;
   const bool partial = samples_left(result.film, settings.spp) > 0;  // done: converged, or at --spp
   const FramePlan to = partial ? keeping_finished_frame(plan) : plan;

@@ -24,6 +24,9 @@ struct FrameJob {
   // The MPI ranks rendering the frame together (null: this process alone). Rank 0 shows the
   // progress, writes the outputs and checkpoints and prints the summary; the others render.
   RankGroup* ranks = nullptr;
+  // The MPI ranks of a sequence whose frames they render alone (whole frames to ranks): this
+  // rank tells them between waves that it is alive.
+  RankGroup* alive_in = nullptr;
 };
 
 struct FrameJobResult {

@@ -1,11 +1,19 @@
 // tessera scaling: renders one scene with 1..N threads and each scheduler, and writes the
-// speedups as a Markdown table, a CSV file and an SVG plot.
+// speedups as a Markdown table, a CSV file and an SVG plot. With --ranks-max, also with 2..R
+// MPI ranks: those runs are `tessera render` under mpirun, their figures read back from the
+// render's --stats-json.
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <map>
+#include <optional>
+#include <sstream>
+#include <tuple>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "app/commands.h"
 #include "app/exit_codes.h"
@@ -14,6 +22,7 @@
 #include "app/render_setup.h"
 #include "app/scaling_plot.h"
 #include "app/scaling_report.h"
+#include "app/subprocess.h"
 #include "app/terminal.h"
 #include "renderer/file_output.h"
 #include "renderer/render.h"
@@ -22,8 +31,8 @@ namespace tessera {
 
 void add_scaling_command(CLI::App& app, ScalingOptions& o) {
   CLI::App* cmd = app.add_subcommand(
-      "scaling", "Render a scene with 1..N threads and each scheduler; write speedup and efficiency as "
-                 "DIR/scaling.md, DIR/scaling.csv and a plot DIR/scaling.svg.");
+      "scaling", "Render a scene with 1..N threads (and 1..R MPI ranks) and each scheduler; write speedup and "
+                 "efficiency as DIR/scaling.md, DIR/scaling.csv and a plot DIR/scaling.svg.");
   cmd->add_option("scene", o.scene_path, "The glTF file to render")->required();
   cmd->add_option("--threads-max", o.threads_max, "Most threads (may exceed the cores) [default: the core count]")
       ->check(CLI::Range(1, 1024));
@@ -38,6 +47,14 @@ void add_scaling_command(CLI::App& app, ScalingOptions& o) {
   cmd->add_option("--width", o.width, "Image width (height from the camera's aspect ratio)")
       ->check(CLI::Range(1, 8192))->capture_default_str();
   cmd->add_option("--tile-size", o.tile_size, "Tile edge in pixels")->check(CLI::Range(1, 4096))->capture_default_str();
+  cmd->add_option("--ranks-max", o.ranks_max,
+                  "Also run with 2..R MPI ranks (each with 1..--threads-max threads): `tessera render` launched "
+                  "with --launcher")
+      ->check(CLI::Range(1, 4096))->capture_default_str();
+  cmd->add_option("--launcher", o.launcher,
+                  "The command that starts a multi-rank run, {} standing for the rank count (e.g. "
+                  "\"srun -n {}\" under Slurm)")
+      ->capture_default_str();
   cmd->add_option("--repeat", o.repeat, "Renders of each scheduler and thread count; medians are reported")
       ->check(CLI::Range(1, 100))->capture_default_str();
   cmd->add_option("--out", o.out, "Output directory, created if missing [default: scaling-SCENE_NAME]");
@@ -48,16 +65,72 @@ namespace {
 
 struct Run {
   std::string scheduler;
-  int threads;
+  int ranks, threads;
 };
 
 // Repeats cycle through every run, so a change in the machine's load hits all runs alike.
-std::vector<Run> run_order(const std::vector<std::string>& schedulers, int repeat, int threads_max) {
+std::vector<Run> run_order(const std::vector<std::string>& schedulers, int repeat, int ranks_max, int threads_max) {
   std::vector<Run> runs;
   for (int r = 0; r < repeat; ++r)
-    for (int n = 1; n <= threads_max; ++n)
-      for (const std::string& s : schedulers) runs.push_back({s, n});
+    for (int k = 1; k <= ranks_max; ++k)
+      for (int n = 1; n <= threads_max; ++n)
+        for (const std::string& s : schedulers) runs.push_back({s, k, n});
   return runs;
+}
+
+// What one render measured.
+struct Measured {
+  double wall = 0.0, efficiency = 1.0, imbalance = 1.0, tail = 0.0, cpu_share = 1.0;
+};
+
+Measured measured(const RenderResult& r) {
+  return {r.stats.seconds, r.stats.efficiency, r.stats.imbalance, r.profile.balance.tail, r.profile.balance.cpu_share};
+}
+
+std::vector<std::string> launcher_words(const std::string& launcher, int ranks) {
+  std::string line = launcher;
+  for (std::size_t at = line.find("{}"); at != std::string::npos; at = line.find("{}", at))
+    line.replace(at, 2, std::to_string(ranks));
+  std::istringstream in(line);
+  std::vector<std::string> words;
+  for (std::string w; in >> w;) words.push_back(w);
+  return words;
+}
+
+std::string last_line(const std::string& path) {
+  std::ifstream in(path);
+  std::string line, last;
+  while (std::getline(in, line))
+    if (!line.empty()) last = line;
+  return last;
+}
+
+// A run of several ranks: `tessera render` with the same settings under the launcher, its
+// figures from its --stats-json (the time line and efficiency over every rank's threads).
+// nullopt: interrupted.
+std::optional<Measured> run_with_ranks(const ScalingOptions& o, int width, const Run& run, const std::string& dir) {
+  const std::filesystem::path base = std::filesystem::path(dir) / ".run";
+  const std::string json = base.string() + ".json", exr = base.string() + ".exr", log = base.string() + ".log";
+  std::vector<std::string> argv = launcher_words(o.launcher, run.ranks);
+  for (std::string a : {own_executable(), std::string("render"), o.scene_path, std::string("-q")}) argv.push_back(a);
+  const std::vector<std::string> settings = {
+      "--width", std::to_string(width), "--spp", std::to_string(o.spp), "--tile-size", std::to_string(o.tile_size),
+      "--tile-order", o.tile_order, "--scheduler", run.scheduler, "--threads", std::to_string(run.threads),
+      "--stats-json", json, "-o", exr};
+  argv.insert(argv.end(), settings.begin(), settings.end());
+  if (!o.envmap.empty()) argv.insert(argv.end(), {"--envmap", o.envmap});
+  const int code = run_program(argv, log);
+  if (code == kExitInterrupted) return std::nullopt;
+  if (code != 0)
+    throw std::runtime_error(fmt::format("{} ranks: `{}` failed with exit code {}: {}", run.ranks, argv[0], code,
+                                         last_line(log)));
+  std::ifstream in(json);
+  const nlohmann::json stats = nlohmann::json::parse(in, nullptr, false);
+  if (stats.is_discarded() || !stats.contains("frame"))
+    throw std::runtime_error(fmt::format("{} ranks: the render wrote no statistics ({})", run.ranks, json));
+  const nlohmann::json& f = stats["frame"];
+  for (const std::string& file : {json, exr, log}) std::filesystem::remove(file);
+  return Measured{f["render_seconds"], f["parallel_efficiency"], f["imbalance"], f["tail_seconds"], f["cpu_share"]};
 }
 
 double median(std::vector<double> v) {
@@ -70,9 +143,10 @@ struct Samples {
   std::vector<double> wall, efficiency, imbalance, tail, cpu_share;
 };
 
-ScalingRow summarize(const std::string& scheduler, int threads, const Samples& s, double baseline) {
+ScalingRow summarize(const std::string& scheduler, int ranks, int threads, const Samples& s, double baseline) {
   ScalingRow row;
   row.scheduler = scheduler;
+  row.ranks = ranks;
   row.threads = threads;
   row.wall = median(s.wall);
   row.wall_min = *std::min_element(s.wall.begin(), s.wall.end());
@@ -108,6 +182,7 @@ int run_scaling(const ScalingOptions& o) {
   report.repeat = o.repeat;
   report.cores = default_thread_count();
   report.threads_max = o.threads_max > 0 ? o.threads_max : report.cores;
+  report.ranks_max = o.ranks_max;
   report.tile_order = o.tile_order;
   for (const std::string& s : o.schedulers)  // each once, in the order given
     if (std::find(report.schedulers.begin(), report.schedulers.end(), s) == report.schedulers.end())
@@ -122,47 +197,70 @@ int run_scaling(const ScalingOptions& o) {
 
   RenderMonitor monitor;
   InterruptHandler interrupts(monitor.cancel);
-  std::map<std::pair<std::string, int>, Samples> results;
-  const std::vector<Run> runs = run_order(report.schedulers, o.repeat, report.threads_max);
+  if (o.ranks_max > 1) {  // Open MPI refuses root unless told (as --allow-run-as-root does)
+    setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 0);
+    setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 0);
+  }
+  std::map<std::tuple<std::string, int, int>, Samples> results;
+  const std::vector<Run> runs = run_order(report.schedulers, o.repeat, o.ranks_max, report.threads_max);
   const auto start = std::chrono::steady_clock::now();
+  bool interrupted = false;
   for (std::size_t i = 0; i < runs.size() && !interrupts.interrupted(); ++i) {
-    settings.scheduler = parse_scheduler(runs[i].scheduler);
-    settings.threads = runs[i].threads;
-    monitor.samples_done = 0;
-    monitor.rays = 0;
-    const std::string name = fmt::format("[{}/{}] {}, {} thread{}", i + 1, runs.size(), runs[i].scheduler,
-                                         runs[i].threads, runs[i].threads == 1 ? "" : "s");
-    RenderResult r;
-    {
-      const std::uint64_t total = static_cast<std::uint64_t>(m.width) * m.height * o.spp;
-      ProgressDisplay progress(monitor, {total, o.quiet, name + " ", true});
-      r = render_frame(*m.scene, m.camera, settings, &monitor);
+    const Run& run = runs[i];
+    const std::string name = fmt::format("[{}/{}] {}, {}{} thread{}", i + 1, runs.size(), run.scheduler,
+                                         run.ranks > 1 ? fmt::format("{} ranks x ", run.ranks) : "", run.threads,
+                                         run.threads == 1 ? "" : "s");
+    Measured r;
+    if (run.ranks > 1) {
+      if (!o.quiet) fmt::print(stderr, "{} ...\r", name);
+      const std::optional<Measured> launched = run_with_ranks(o, m.width, run, dir);
+      if (!launched) {
+        interrupted = true;
+        break;
+      }
+      r = *launched;
+    } else {
+      settings.scheduler = parse_scheduler(run.scheduler);
+      settings.threads = run.threads;
+      monitor.samples_done = 0;
+      monitor.rays = 0;
+      RenderResult result;
+      {
+        const std::uint64_t total = static_cast<std::uint64_t>(m.width) * m.height * o.spp;
+        ProgressDisplay progress(monitor, {total, o.quiet, name + " ", true});
+        result = render_frame(*m.scene, m.camera, settings, &monitor);
+      }
+      if (result.stats.cancelled) {
+        interrupted = true;
+        break;
+      }
+      r = measured(result);
     }
-    if (r.stats.cancelled) break;
-    Samples& s = results[{runs[i].scheduler, runs[i].threads}];
-    s.wall.push_back(r.stats.seconds);
-    s.efficiency.push_back(r.stats.efficiency);
-    s.imbalance.push_back(r.stats.imbalance);
-    s.tail.push_back(r.profile.balance.tail);
-    s.cpu_share.push_back(r.profile.balance.cpu_share);
+    Samples& s = results[{run.scheduler, run.ranks, run.threads}];
+    s.wall.push_back(r.wall);
+    s.efficiency.push_back(r.efficiency);
+    s.imbalance.push_back(r.imbalance);
+    s.tail.push_back(r.tail);
+    s.cpu_share.push_back(r.cpu_share);
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (!o.quiet)
       print_status(fmt::format("{}: {:.3f} s, efficiency {:.1f}%, imbalance {:.2f}; {} elapsed, about {} left", name,
-                               r.stats.seconds, 100.0 * r.stats.efficiency, r.stats.imbalance, format_duration(elapsed),
+                               r.wall, 100.0 * r.efficiency, r.imbalance, format_duration(elapsed),
                                format_duration(elapsed / (i + 1) * (runs.size() - i - 1))));
   }
-  if (interrupts.interrupted()) {
+  if (interrupted || interrupts.interrupted()) {
     fmt::print(stderr, "tessera: scaling interrupted; nothing written\n");
     return kExitInterrupted;
   }
 
   std::vector<double> one_thread;
   for (const std::string& s : report.schedulers)
-    for (double w : results[{s, 1}].wall) one_thread.push_back(w);
+    for (double w : results[{s, 1, 1}].wall) one_thread.push_back(w);
   report.baseline = median(one_thread);
   for (const std::string& s : report.schedulers)
-    for (int n = 1; n <= report.threads_max; ++n)
-      report.rows.push_back(summarize(s, n, results[{s, n}], report.baseline));
+    for (int k = 1; k <= o.ranks_max; ++k)
+      for (int n = 1; n <= report.threads_max; ++n)
+        report.rows.push_back(summarize(s, k, n, results[{s, k, n}], report.baseline));
 
   const std::filesystem::path out(dir);
   const std::string md = scaling_markdown(report);

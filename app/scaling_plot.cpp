@@ -5,13 +5,13 @@
 
 #include <fmt/format.h>
 
+#include "app/colormap.h"
+
 namespace tessera {
 
 namespace {
 
 constexpr double kWidth = 680, kHeight = 440, kLeft = 64, kRight = 150, kTop = 48, kBottom = 56;
-// Okabe-Ito colours: distinguishable by colour-blind readers.
-constexpr unsigned kColours[] = {0x0072B2, 0xD55E00, 0x009E73, 0xCC79A7, 0xE69F00, 0x56B4E9};
 const Colour kInk = hex_colour(0x333333), kGridLine = hex_colour(0xe4e4e4), kIdeal = hex_colour(0x888888),
              kCores = hex_colour(0xaaaaaa);
 const Font kTitle{15.0}, kLabel{13.0}, kSmall{11.0};
@@ -65,22 +65,28 @@ void draw_legend(Chart& c, const ScalingPlot& p) {
 
 ScalingPlot scaling_plot(const ScalingReport& r) {
   ScalingPlot p;
-  p.title = fmt::format("{}: speedup against threads ({}x{}, {} spp, {} cores)", r.scene, r.width, r.height, r.spp,
-                        r.cores);
-  p.x_label = "threads";
+  const bool ranks = r.ranks_max > 1;
+  p.title = fmt::format("{}: speedup against {} ({}x{}, {} spp, {} cores)", r.scene,
+                        ranks ? "ranks x threads" : "threads", r.width, r.height, r.spp, r.cores);
+  p.x_label = ranks ? "threads in all (ranks x threads per rank)" : "threads";
   p.y_label = "speedup (one-thread time / wall time)";
-  p.x_max = std::max(2.0, static_cast<double>(r.threads_max));
-  double top = r.threads_max;
+  const int workers = r.threads_max * r.ranks_max;
+  p.x_max = std::max(2.0, static_cast<double>(workers));
+  double top = workers;
   for (const ScalingRow& row : r.rows) top = std::max(top, row.speedup);
   p.y_max = std::ceil(top * 1.1);
   p.x_ticks = ticks(p.x_min, p.x_max, std::max(1.0, tick_step(p.x_max - p.x_min, 12)));
   p.y_ticks = ticks(0.0, p.y_max, std::max(1.0, tick_step(p.y_max, 8)));
-  for (std::size_t k = 0; k < r.schedulers.size(); ++k) {
-    PlotSeries s{r.schedulers[k], hex_colour(kColours[k % 6]), {}};
-    for (const ScalingRow& row : r.rows)
-      if (row.scheduler == r.schedulers[k]) s.points.push_back({row.threads, row.speedup});
-    p.series.push_back(std::move(s));
-  }
+  // A series per scheduler and rank count (x: the threads of all ranks).
+  for (int ranks_of = 1; ranks_of <= r.ranks_max; ++ranks_of)
+    for (std::size_t k = 0; k < r.schedulers.size(); ++k) {
+      PlotSeries s{ranks_of > 1 ? fmt::format("{}, {} ranks", r.schedulers[k], ranks_of) : r.schedulers[k],
+                   category_colour(k + (ranks_of - 1) * r.schedulers.size()), {}};
+      for (const ScalingRow& row : r.rows)
+        if (row.scheduler == r.schedulers[k] && row.ranks == ranks_of)
+          s.points.push_back({row.ranks * row.threads, row.speedup});
+      p.series.push_back(std::move(s));
+    }
   p.series.push_back({"ideal", kIdeal, {{1.0, 1.0}, {p.x_max, p.x_max}}, true, false});
   p.cores = r.cores;
   return p;

@@ -1,5 +1,6 @@
-// The speedup plot of tessera scaling: speedup against threads, one line with markers per
-// scheduler, the ideal line, a dotted mark at the core count, axes with ticks and a legend.
+// The speedup plot of tessera scaling: speedup against threads (of all ranks, with
+// --ranks-max), one line with markers per scheduler (and rank count), the ideal line, a
+// dotted mark at the core count, axes with ticks and a legend.
 // Drawn with Cairo (app/chart.h): SVG, or PNG and the other raster formats.
 #pragma once
 
@@ -14,7 +15,7 @@ namespace tessera {
 struct PlotSeries {
   std::string name;  // in the legend
   Colour colour;
-  std::vector<Point> points;  // (threads, speedup)
+  std::vector<Point> points;  // (threads of all ranks, speedup)
   bool dashed = false;
   bool markers = true;
 };
@@ -24,7 +25,7 @@ struct ScalingPlot {
   std::string title, x_label, y_label;
   double x_min = 1.0, x_max = 2.0, y_max = 1.0;
   std::vector<double> x_ticks, y_ticks;
-  std::vector<PlotSeries> series;  // one per scheduler, in order, then "ideal"
+  std::vector<PlotSeries> series;  // one per rank count and scheduler, in order, then "ideal"
   int cores = 0;  // marked when inside the plot
 };
 

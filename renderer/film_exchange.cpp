@@ -1,7 +1,8 @@
 #include "renderer/film_exchange.h"
 
-#include <cstring>
 #include <stdexcept>
+
+#include "renderer/byte_stream.h"
 
 namespace tessera {
 namespace {
@@ -34,31 +35,22 @@ void each_pixel(const Tile& t, int width, Body&& body) {
 }  // namespace
 
 std::vector<char> pack_tiles(const FilmState& film, const std::vector<Tile>& tiles, const std::vector<std::size_t>& taken) {
-  std::vector<char> out;
-  auto put = [&](const auto& value) {
-    const char* p = reinterpret_cast<const char*>(&value);
-    out.insert(out.end(), p, p + sizeof value);
-  };
-  put(taken.size());
+  ByteWriter out;
+  auto put = [&](const auto& value) { out.put(value); };
+  out.put(taken.size());
   for (std::size_t item : taken) {
-    put(item);
+    out.put(item);
     each_pixel(tiles[item], film.width, [&](std::size_t i) { each_field(film, i, put); });
   }
-  return out;
+  return out.take();
 }
 
 void unpack_tiles(FilmState& film, const std::vector<Tile>& tiles, const std::vector<char>& bytes) {
-  std::size_t at = 0;
-  auto get = [&](auto& value) {
-    if (at + sizeof value > bytes.size()) throw std::runtime_error("a rank's tile data is shorter than its tiles");
-    std::memcpy(&value, bytes.data() + at, sizeof value);
-    at += sizeof value;
-  };
-  std::size_t count = 0;
-  get(count);
+  ByteReader in(bytes, "a rank's tile data");
+  auto get = [&](auto& value) { in.get(value); };
+  const auto count = in.get<std::size_t>();
   for (std::size_t k = 0; k < count; ++k) {
-    std::size_t item = 0;
-    get(item);
+    const auto item = in.get<std::size_t>();
     if (item >= tiles.size()) throw std::runtime_error("a rank sent a tile the plan does not have");
     each_pixel(tiles[item], film.width, [&](std::size_t i) { each_field(film, i, get); });
   }

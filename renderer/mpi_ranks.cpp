@@ -1,21 +1,70 @@
 #include "renderer/mpi_ranks.h"
 
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
 #include <string>
+#include <thread>
 
 #include <mpi.h>
 
 namespace tessera {
 namespace {
 
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// Adds the time from construction to destruction to a total: the communication time.
+class Timed {
+ public:
+  explicit Timed(double& total) : total_(total), start_(Clock::now()) {}
+  ~Timed() { total_ += seconds_since(start_); }
+  Timed(const Timed&) = delete;
+  Timed& operator=(const Timed&) = delete;
+
+ private:
+  double& total_;
+  Clock::time_point start_;
+};
+
+// Rank 0's window holds the work counter, then two notes per rank that rank 0's watchdog
+// reads: the number of the last collective call the rank entered, and how many signs of
+// life (calls, batches taken) it has given.
+constexpr MPI_Aint kCounter = 0;
+MPI_Aint arrived_slot(int rank) { return 1 + 2 * static_cast<MPI_Aint>(rank); }
+MPI_Aint beats_slot(int rank) { return arrived_slot(rank) + 1; }
+
+// A waiting rank tests its request in a loop, as MPI_Wait does, then after this long sleeps
+// between tests, giving its core to ranks that still render (an oversubscribed machine).
+constexpr double kSpinSeconds = 0.01;
+constexpr auto kNap = std::chrono::microseconds(200);
+constexpr double kWatchEvery = 0.05;  // seconds between a waiting rank's looks at the notes
+
+std::string rank_list(const std::vector<int>& ranks) {
+  std::string s = ranks.size() == 1 ? "rank " : "ranks ";
+  for (std::size_t i = 0; i < ranks.size(); ++i) s += (i ? ", " : "") + std::to_string(ranks[i]);
+  return s;
+}
+
 class MpiRankGroup : public RankGroup {
  public:
-  MpiRankGroup(int rank, int size) : rank_(rank), size_(size) {
-    MPI_Win_allocate(rank == 0 ? sizeof(long long) : 0, sizeof(long long), MPI_INFO_NULL, MPI_COMM_WORLD, &counter_,
-                     &window_);
-    if (rank == 0) *counter_ = 0;
+  MpiRankGroup(int rank, int size, double timeout) : rank_(rank), size_(size), timeout_(timeout) {
+    const MPI_Aint slots = rank == 0 ? arrived_slot(size) : 0;
+    // Open MPI's one-sided components differ by network; say which to use rather than die.
+    MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
+    const int made = MPI_Win_allocate(slots * static_cast<MPI_Aint>(sizeof(long long)), sizeof(long long),
+                                      MPI_INFO_NULL, MPI_COMM_WORLD, &slots_, &window_);
+    MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_ARE_FATAL);
+    if (made != MPI_SUCCESS)
+      throw std::runtime_error(
+          "MPI could not make the work counter's one-sided window on this network (over plain TCP, Open MPI's "
+          "osc/ucx fails: run mpirun with --mca osc ^ucx)");
+    std::fill_n(slots_, slots, 0LL);
     MPI_Win_lock_all(MPI_MODE_NOCHECK, window_);
+    MPI_Barrier(MPI_COMM_WORLD);  // rank 0's slots are zero before anyone writes them
   }
   ~MpiRankGroup() override {
     MPI_Win_unlock_all(window_);
@@ -26,54 +75,182 @@ class MpiRankGroup : public RankGroup {
   int size() const override { return size_; }
 
   void start_wave(std::size_t count) override {
+    Timed timed(communication_);
     count_ = count;
-    MPI_Barrier(MPI_COMM_WORLD);  // everyone is done with the last wave's counter
+    barrier_untimed();  // everyone is done with the last wave's counter
     if (rank_ == 0) {
       const long long zero = 0;
-      MPI_Put(&zero, 1, MPI_LONG_LONG, 0, 0, 1, MPI_LONG_LONG, window_);
+      MPI_Put(&zero, 1, MPI_LONG_LONG, 0, kCounter, 1, MPI_LONG_LONG, window_);
       MPI_Win_flush(0, window_);
     }
-    MPI_Barrier(MPI_COMM_WORLD);
+    barrier_untimed();
   }
 
   std::pair<std::size_t, std::size_t> next_items(std::size_t batch) override {
+    Timed timed(communication_);
     const long long add = static_cast<long long>(batch);
     long long first = 0;
-    MPI_Fetch_and_op(&add, &first, MPI_LONG_LONG, 0, 0, MPI_SUM, window_);
+    MPI_Fetch_and_op(&add, &first, MPI_LONG_LONG, 0, kCounter, MPI_SUM, window_);
+    note_beat();  // flushed with the counter's operation
     MPI_Win_flush(0, window_);
     const std::size_t begin = std::min(static_cast<std::size_t>(first), count_);
     return {begin, std::min(begin + batch, count_)};
   }
 
-  std::vector<std::vector<char>> all_gather(const std::vector<char>& mine) override {
+  std::vector<std::vector<char>> all_gather(const std::vector<char>& mine) override { return collect(mine, true); }
+  std::vector<std::vector<char>> gather(const std::vector<char>& mine) override { return collect(mine, false); }
+
+  bool any(bool flag) override {
+    Timed timed(communication_);
+    int mine = flag ? 1 : 0, result = 0;
+    enter();
+    MPI_Request request;
+    MPI_Iallreduce(&mine, &result, 1, MPI_INT, MPI_LOR, MPI_COMM_WORLD, &request);
+    wait(request);
+    return result != 0;
+  }
+
+  std::uint64_t sum(std::uint64_t value) override {
+    Timed timed(communication_);
+    unsigned long long mine = value, result = 0;
+    enter();
+    MPI_Request request;
+    MPI_Iallreduce(&mine, &result, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, MPI_COMM_WORLD, &request);
+    wait(request);
+    return result;
+  }
+
+  void barrier() override {
+    Timed timed(communication_);
+    barrier_untimed();
+  }
+
+  void alive() override {
+    Timed timed(communication_);
+    note_beat();
+    MPI_Win_flush(0, window_);
+  }
+
+  void progress() override {
+    int flag = 0;
+    MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, MPI_STATUS_IGNORE);
+  }
+
+  double communication_seconds() const override { return communication_; }
+
+ private:
+  void barrier_untimed() {
+    enter();
+    MPI_Request request;
+    MPI_Ibarrier(MPI_COMM_WORLD, &request);
+    wait(request);
+  }
+
+  // Every rank's bytes in rank order, on every rank (`everyone`) or on rank 0: the sizes
+  // first, then the bytes.
+  std::vector<std::vector<char>> collect(const std::vector<char>& mine, bool everyone) {
+    Timed timed(communication_);
     const int n = static_cast<int>(mine.size());
     std::vector<int> sizes(size_), offsets(size_);
-    MPI_Allgather(&n, 1, MPI_INT, sizes.data(), 1, MPI_INT, MPI_COMM_WORLD);
-    int total = 0;
-    for (int r = 0; r < size_; ++r) offsets[r] = total, total += sizes[r];
-    std::vector<char> all(static_cast<std::size_t>(total));
-    MPI_Allgatherv(mine.data(), n, MPI_CHAR, all.data(), sizes.data(), offsets.data(), MPI_CHAR, MPI_COMM_WORLD);
+    MPI_Request request;
+    enter();
+    if (everyone) MPI_Iallgather(&n, 1, MPI_INT, sizes.data(), 1, MPI_INT, MPI_COMM_WORLD, &request);
+    else MPI_Igather(&n, 1, MPI_INT, sizes.data(), 1, MPI_INT, 0, MPI_COMM_WORLD, &request);
+    wait(request);
+    const bool receives = everyone || rank_ == 0;
+    const int total = place(sizes, offsets);
+    std::vector<char> all(receives ? static_cast<std::size_t>(total) : 0);
+    enter();
+    if (everyone)
+      MPI_Iallgatherv(mine.data(), n, MPI_CHAR, all.data(), sizes.data(), offsets.data(), MPI_CHAR, MPI_COMM_WORLD,
+                      &request);
+    else
+      MPI_Igatherv(mine.data(), n, MPI_CHAR, all.data(), sizes.data(), offsets.data(), MPI_CHAR, 0, MPI_COMM_WORLD,
+                   &request);
+    wait(request);
+    if (!receives) return {};
     std::vector<std::vector<char>> out(size_);
     for (int r = 0; r < size_; ++r) out[r].assign(all.begin() + offsets[r], all.begin() + offsets[r] + sizes[r]);
     return out;
   }
 
-  bool any(bool flag) override {
-    int mine = flag ? 1 : 0, result = 0;
-    MPI_Allreduce(&mine, &result, 1, MPI_INT, MPI_LOR, MPI_COMM_WORLD);
-    return result != 0;
+  static int place(const std::vector<int>& sizes, std::vector<int>& offsets) {
+    int total = 0;
+    for (std::size_t r = 0; r < sizes.size(); ++r) offsets[r] = total, total += sizes[r];
+    return total;
   }
 
-  std::uint64_t sum(std::uint64_t value) override {
-    unsigned long long mine = value, result = 0;
-    MPI_Allreduce(&mine, &result, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, MPI_COMM_WORLD);
-    return result;
+  // Notes for the watchdog: counters at rank 0 advanced with the same remote atomic as the
+  // work counter (MPI_Fetch_and_op, MPI_SUM), which needs nothing of rank 0 while it renders;
+  // other one-sided operations may wait for rank 0 to enter MPI, serialising the ranks.
+  void add_at_rank0(MPI_Aint slot) {
+    const long long one = 1;
+    long long before = 0;
+    MPI_Fetch_and_op(&one, &before, MPI_LONG_LONG, 0, slot, MPI_SUM, window_);
+  }
+  void note_beat() { add_at_rank0(beats_slot(rank_)); }
+  // Before each collective call: every rank makes the same calls, so their counts agree.
+  void enter() {
+    ++calls_;
+    note_beat();
+    add_at_rank0(arrived_slot(rank_));
+    MPI_Win_flush(0, window_);
   }
 
- private:
+  // The notes of ranks [first, first + count): [arrived, beats] each.
+  std::vector<long long> read_notes(int first, int count) {
+    std::vector<long long> notes(2 * static_cast<std::size_t>(count));
+    MPI_Get_accumulate(nullptr, 0, MPI_LONG_LONG, notes.data(), static_cast<int>(notes.size()), MPI_LONG_LONG, 0,
+                       arrived_slot(first), static_cast<int>(notes.size()), MPI_LONG_LONG, MPI_NO_OP, window_);
+    MPI_Win_flush(0, window_);
+    return notes;
+  }
+
+  // MPI_Wait with a watchdog. A waiting rank gives signs of life itself, and looks at the
+  // notes: rank 0 gives up on the ranks that have not entered this call and have given no sign
+  // of life for the timeout, naming them; another rank gives up when rank 0 has given none for
+  // the timeout (while it waits for a healthy rank, rank 0 gives them).
+  void wait(MPI_Request& request) {
+    int done = 0;
+    MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+    if (done) return;
+    const Clock::time_point start = Clock::now();
+    const int watched = rank_ == 0 ? size_ : 1;  // rank 0 watches every rank; the others, rank 0
+    std::vector<long long> beats(watched, -1);
+    std::vector<Clock::time_point> seen(watched, start);
+    Clock::time_point looked = start;
+    for (;;) {
+      MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+      if (done) return;
+      if (seconds_since(start) > kSpinSeconds) std::this_thread::sleep_for(kNap);
+      if (timeout_ <= 0.0 || seconds_since(looked) < kWatchEvery) continue;
+      looked = Clock::now();
+      note_beat();
+      const std::vector<long long> notes = read_notes(0, watched);
+      std::vector<int> late;
+      for (int r = 0; r < watched; ++r) {
+        if (r == rank_) continue;
+        if (notes[2 * r + 1] != beats[r]) beats[r] = notes[2 * r + 1], seen[r] = looked;
+        if ((rank_ != 0 || notes[2 * r] < calls_) && seconds_since(seen[r]) > timeout_) late.push_back(r);
+      }
+      if (!late.empty())
+        throw RankTimeout(rank_list(late) + fmt_seconds(late.size() == 1 ? " has not answered for " : " have not answered for ", timeout_) +
+                          " (stopped, hung or cut off): ending the job");
+    }
+  }
+
+  static std::string fmt_seconds(const std::string& before, double seconds) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g s", seconds);
+    return before + text;
+  }
+
   int rank_, size_;
+  double timeout_;
   std::size_t count_ = 0;
-  long long* counter_ = nullptr;
+  long long* slots_ = nullptr;
+  long long calls_ = 0;
+  double communication_ = 0.0;
   MPI_Win window_;
 };
 
@@ -95,7 +272,9 @@ MpiSession::MpiSession(int& argc, char**& argv) {
 
 MpiSession::~MpiSession() { MPI_Finalize(); }
 
-std::unique_ptr<RankGroup> MpiSession::ranks() const { return std::make_unique<MpiRankGroup>(rank_, size_); }
+std::unique_ptr<RankGroup> MpiSession::ranks(double timeout) const {
+  return std::make_unique<MpiRankGroup>(rank_, size_, timeout);
+}
 
 void MpiSession::abort_all(int exit_code) {
   MPI_Abort(MPI_COMM_WORLD, exit_code);

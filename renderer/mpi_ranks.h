@@ -5,6 +5,7 @@
 #pragma once
 
 #include <memory>
+#include <stdexcept>
 
 #include "renderer/rank_group.h"
 
@@ -13,6 +14,11 @@ namespace tessera {
 // True when built with MPI and started by an MPI launcher (its environment says so): only
 // then is MPI initialised, so a plain run pays nothing for it.
 bool launched_by_mpi();
+
+// A rank stopped answering: the watchdog's verdict, naming it.
+struct RankTimeout : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
 
 class MpiSession {
  public:
@@ -23,7 +29,11 @@ class MpiSession {
   int rank() const { return rank_; }
   int size() const { return size_; }
   // The world's ranks as a RankGroup (the window is created collectively: every rank calls).
-  std::unique_ptr<RankGroup> ranks() const;
+  // Its watchdog: rank 0, waiting in a collective call, throws RankTimeout naming the ranks
+  // that have not reached the call and have given no sign of life (a call, a batch taken, a
+  // wave of a frame rendered alone, waiting) for `timeout` seconds; another rank, waiting,
+  // throws when rank 0 has given none for that long. 0: no watchdog.
+  std::unique_ptr<RankGroup> ranks(double timeout) const;
   // Ends every rank's process (MPI_Abort), e.g. when this rank failed and the others wait.
   [[noreturn]] static void abort_all(int exit_code);
 

@@ -1,5 +1,6 @@
 #include "renderer/profile_json.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <nlohmann/json.hpp>
@@ -27,14 +28,35 @@ json frame_json(const FrameProfile& p, const RenderStats& stats) {
           {"render_seconds", stats.seconds},
           {"camera_samples", stats.camera_samples},
           {"rays", stats.rays},
-          {"cancelled", stats.cancelled}};
+          {"cancelled", stats.cancelled},
+          {"ranks", std::max<std::size_t>(1, p.ranks.size())}};
+}
+
+// The ranks of a distributed render; one process is rank 0 with no communication.
+std::vector<RankStats> ranks_of(const FrameProfile& p) {
+  if (!p.ranks.empty()) return p.ranks;
+  RankStats one;
+  one.threads = static_cast<int>(p.threads.size());
+  for (const ThreadStats& t : p.threads) one.busy += t.busy, one.cpu += t.cpu, one.items += t.items;
+  one.idle = one.threads * p.balance.wall - one.busy;
+  one.efficiency = p.balance.efficiency;
+  return {one};
+}
+
+json ranks_json(const FrameProfile& p) {
+  json out = json::array();
+  for (const RankStats& r : ranks_of(p))
+    out.push_back({{"rank", r.rank}, {"threads", r.threads}, {"busy_seconds", r.busy}, {"idle_seconds", r.idle},
+                   {"communication_seconds", r.communication}, {"cpu_seconds", r.cpu}, {"items", r.items},
+                   {"efficiency", r.efficiency}});
+  return out;
 }
 
 json threads_json(const FrameProfile& p) {
   json out = json::array();
   for (std::size_t t = 0; t < p.threads.size(); ++t) {
     const ThreadStats& s = p.threads[t];
-    out.push_back({{"thread", t}, {"busy_seconds", s.busy}, {"idle_seconds", s.idle}, {"cpu_seconds", s.cpu},
+    out.push_back({{"rank", s.rank}, {"thread", s.thread}, {"busy_seconds", s.busy}, {"idle_seconds", s.idle}, {"cpu_seconds", s.cpu},
                    {"items", s.items}});
   }
   return out;
@@ -53,13 +75,15 @@ json waves_json(const FrameProfile& p) {
 json tiles_json(const FrameProfile& p) {
   const std::vector<double> seconds = tile_seconds(p), cpu = tile_seconds(p, TileClock::cpu);
   json out = json::array();
-  for (std::size_t t = 0; t < p.plan.tiles.size(); ++t)
+  for (std::size_t t = 0; t < p.plan.tiles.size(); ++t) {
     out.push_back({{"tile", t},
                    {"column", t % p.plan.grid.columns},
                    {"row", t / p.plan.grid.columns},
                    {"rect", rect_json(p.plan.tiles[t])},
                    {"seconds", seconds[t]},
                    {"cpu_seconds", cpu[t]}});
+    if (!p.tile_rank.empty()) out.back()["rank"] = p.tile_rank[t];  // the rank that spent the most on it
+  }
   return out;
 }
 
@@ -68,7 +92,7 @@ json runs_json(const FrameProfile& p) {
   for (const TileRecord& r : p.records) {
     if (r.thread < 0) continue;
     const WorkItem& item = p.plan.items[r.item];
-    out.push_back({{"tile", item.tile}, {"rect", rect_json(item.rect)}, {"wave", r.wave}, {"thread", r.thread},
+    out.push_back({{"tile", item.tile}, {"rect", rect_json(item.rect)}, {"wave", r.wave}, {"rank", r.rank}, {"thread", r.thread},
                    {"start", r.start}, {"end", r.end}, {"cpu_seconds", r.cpu}, {"samples", r.samples},
                    {"rays", r.rays}});
   }
@@ -81,8 +105,9 @@ std::string tile_name(const FrameProfile& p, const TileRecord& r) {
   return "tile " + std::to_string(c) + "," + std::to_string(row) + " wave " + std::to_string(r.wave);
 }
 
-json metadata_event(const char* name, int tid, json args) {
-  return {{"name", name}, {"ph", "M"}, {"pid", 1}, {"tid", tid}, {"args", std::move(args)}};
+// One trace process per rank: pid rank + 1.
+json metadata_event(const char* name, int rank, int tid, json args) {
+  return {{"name", name}, {"ph", "M"}, {"pid", rank + 1}, {"tid", tid}, {"args", std::move(args)}};
 }
 
 }  // namespace
@@ -98,6 +123,7 @@ json stats_json(const FrameProfile& p, const RenderStats& stats) {
           {"tile_size", pp.tile_size},
           {"spp", p.waves.empty() ? 0 : p.waves.back().sample_end},
           {"frame", frame_json(p, stats)},
+          {"per_rank", ranks_json(p)},
           {"per_thread", threads_json(p)},
           {"waves", waves_json(p)},
           {"tiles", tiles_json(p)},
@@ -107,13 +133,18 @@ json stats_json(const FrameProfile& p, const RenderStats& stats) {
 json trace_json(const FrameProfile& p) {
   const WorkPlanParams& pp = p.plan.params;
   json events = json::array();
-  events.push_back(metadata_event("process_name", 0,
-                                  {{"name", std::string("tessera ") + scheduler_name(pp.scheduler) + ", " +
-                                                tile_order_name(pp.order) + ", " + std::to_string(pp.threads) +
-                                                " threads"}}));
-  for (int t = 0; t < pp.threads; ++t) {
-    events.push_back(metadata_event("thread_name", t, {{"name", "thread " + std::to_string(t)}}));
-    events.push_back(metadata_event("thread_sort_index", t, {{"sort_index", t}}));
+  const bool distributed = !p.ranks.empty();
+  for (const RankStats& rank : ranks_of(p)) {
+    const int r = rank.rank;
+    const std::string name = distributed ? "rank " + std::to_string(r)
+                                         : std::string("tessera ") + scheduler_name(pp.scheduler) + ", " +
+                                               tile_order_name(pp.order) + ", " + std::to_string(pp.threads) + " threads";
+    events.push_back(metadata_event("process_name", r, 0, {{"name", name}}));
+    events.push_back(metadata_event("process_sort_index", r, 0, {{"sort_index", r}}));
+    for (int t = 0; t < rank.threads; ++t) {
+      events.push_back(metadata_event("thread_name", r, t, {{"name", "thread " + std::to_string(t)}}));
+      events.push_back(metadata_event("thread_sort_index", r, t, {{"sort_index", t}}));
+    }
   }
   for (std::size_t w = 0; w < p.waves.size(); ++w)  // wave boundaries as global markers
     events.push_back({{"name", "wave " + std::to_string(w)}, {"ph", "i"}, {"s", "g"}, {"pid", 1}, {"tid", 0},
@@ -124,7 +155,7 @@ json trace_json(const FrameProfile& p) {
     events.push_back({{"name", tile_name(p, r)},
                       {"cat", "tile"},
                       {"ph", "X"},
-                      {"pid", 1},
+                      {"pid", r.rank + 1},
                       {"tid", r.thread},
                       {"ts", micros(r.start)},
                       {"dur", micros(r.end - r.start)},

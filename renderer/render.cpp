@@ -2,13 +2,15 @@
 
 #include <chrono>
 #include <stdexcept>
-#include <tuple>
+#include <thread>
+#include <utility>
 
 #include <tbb/info.h>
 
 #include "renderer/camera_sample.h"
 #include "renderer/film_exchange.h"
 #include "renderer/integrator/path_tracer.h"
+#include "renderer/rank_profile.h"
 #include "renderer/schedulers.h"
 
 namespace tessera {
@@ -105,19 +107,39 @@ void run_wave_across_ranks(RankGroup& ranks, RankScheduler scheduler, const Work
                            const ItemBody& body, Film& film) {
   const std::size_t n = plan.items.size();
   std::vector<std::size_t> taken;
-  auto take = [&](std::size_t begin, std::size_t end) {
-    runner.run_range(begin, end, body);
-    for (std::size_t i = begin; i < end; ++i) taken.push_back(i);
+  // Rank 0 holds the counter: between its tiles, its MPI thread (this one) serves the others.
+  const std::thread::id mpi_thread = std::this_thread::get_id();
+  const ItemBody serving = [&](std::size_t i, int thread) {
+    body(i, thread);
+    if (std::this_thread::get_id() == mpi_thread) ranks.progress();
+  };
+  // Each batch given to the threads as it comes (they do not wait at its end).
+  auto take = [&](std::pair<std::size_t, std::size_t> batch) {
+    for (std::size_t i = batch.first; i < batch.second; ++i) taken.push_back(i);
+    return batch;
   };
   if (scheduler == RankScheduler::stat) {
-    take(n * ranks.rank() / ranks.size(), n * (ranks.rank() + 1) / ranks.size());
+    bool given = false;
+    const std::pair<std::size_t, std::size_t> block{n * ranks.rank() / ranks.size(), n * (ranks.rank() + 1) / ranks.size()};
+    runner.run_batches([&] { return std::exchange(given, true) ? std::pair<std::size_t, std::size_t>{0, 0} : take(block); },
+                       ranks.rank() == 0 ? serving : body);
   } else {
-    // Batches of about a quarter of a rank's fair share of threads' work: few requests, and
-    // the last ones small enough to even out the ranks' finishing times.
-    const std::size_t batch = std::max<std::size_t>(1, n / (4 * ranks.size() * plan.params.threads));
+    // Guided self-scheduling: each batch is half this rank's share of what is left, and at
+    // least an item per thread. Few requests while much is left, small batches at the end,
+    // so the ranks finish together even when the costly tiles come last. What is left, as
+    // this rank can tell without asking again: the counter past its last batch, and past as
+    // many again for each other rank (they took batches meanwhile).
+    const std::size_t threads = static_cast<std::size_t>(plan.params.threads), share = 2 * ranks.size();
+    auto batch_after = [&](std::size_t counter) { return std::max(threads, (n - std::min(counter, n)) / share); };
     ranks.start_wave(n);
-    for (auto [begin, end] = ranks.next_items(batch); begin < end; std::tie(begin, end) = ranks.next_items(batch))
-      take(begin, end);
+    std::size_t batch = batch_after(0);
+    runner.run_batches(
+        [&] {
+          const auto got = ranks.next_items(batch);
+          batch = batch_after(got.first + batch * ranks.size());
+          return take(got);
+        },
+        ranks.rank() == 0 ? serving : body);
   }
   std::vector<Tile> rects;
   for (const WorkItem& item : plan.items) rects.push_back(item.rect);
@@ -147,6 +169,8 @@ RenderResult render_frame(const RenderScene& scene, const RenderCamera& camera,
   const WorkPlan plan = make_work_plan(
       {settings.width, settings.height, settings.tile_size, threads, settings.scheduler, settings.tile_order});
   const std::vector<SampleWave> waves = sample_waves_of(settings);
+  if (settings.ranks) settings.ranks->barrier();  // the ranks start their clocks together: one time line
+  const double communication_before = settings.ranks ? settings.ranks->communication_seconds() : 0.0;
   ProfileRecorder recorder(plan, static_cast<int>(waves.size()), settings.record_tiles);
   std::atomic<std::uint64_t> dropped{film.state().dropped}, samples{0};
   std::atomic<bool> out_of_time{false};
@@ -202,6 +226,7 @@ RenderResult render_frame(const RenderScene& scene, const RenderCamera& camera,
       runner.run(body);
     }
     recorder.end_wave();
+    if (settings.alive_in) settings.alive_in->alive();
     first_wave = false;
     // Only after a whole wave (a stopped one skipped tiles), and not after the last.
     if (settings.adaptive.on() && waves[w].end >= min_spp && w + 1 < waves.size() && !all_stopped()) {
@@ -233,6 +258,9 @@ RenderResult render_frame(const RenderScene& scene, const RenderCamera& camera,
   RenderResult result;
   result.stats = stats;
   result.profile = recorder.finish();
+  if (settings.ranks)
+    result.profile = gather_profile(*settings.ranks, std::move(result.profile),
+                                    settings.ranks->communication_seconds() - communication_before);
   result.stats.efficiency = result.profile.balance.efficiency;
   result.stats.imbalance = result.profile.balance.imbalance;
   result.image = film.resolve();

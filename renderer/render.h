@@ -51,6 +51,9 @@ struct RenderSettings {
   // film one process would have. Null: this process renders everything.
   RankGroup* ranks = nullptr;
   RankScheduler rank_scheduler = RankScheduler::dynamic;
+  // One rank of a group rendering this frame alone (whole frames to ranks): told between
+  // waves that this rank is alive, for the group's watchdog (RankGroup::alive).
+  RankGroup* alive_in = nullptr;
 };
 
 // Live counters a progress display may poll while rendering, and a way to stop early

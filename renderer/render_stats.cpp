@@ -94,6 +94,7 @@ FrameProfile ProfileRecorder::finish() {
   profile_.threads.resize(slots_.size());
   for (std::size_t t = 0; t < slots_.size(); ++t) {
     ThreadStats& ts = profile_.threads[t];
+    ts.thread = static_cast<int>(t);
     ts.busy = slots_[t].busy;
     ts.cpu = slots_[t].cpu;
     ts.items = slots_[t].items;

@@ -14,13 +14,15 @@ namespace tessera {
 // One item rendered in one sample wave. Times are seconds since the frame started.
 struct TileRecord {
   int item = -1, wave = -1;
-  int thread = -1;  // -1: never ran (the frame was cancelled first)
+  int thread = -1;  // -1: never ran (the frame was cancelled first, or another rank ran it)
+  int rank = 0;  // the MPI rank whose thread it was
   double start = 0.0, end = 0.0;
   double cpu = 0.0;  // the thread's CPU time in the tile: less than end - start when preempted
   std::uint64_t samples = 0, rays = 0;
 };
 
 struct ThreadStats {
+  int rank = 0, thread = 0;  // the MPI rank, and the thread's index in it
   double busy = 0.0;  // inside items
   double idle = 0.0;  // wall time minus busy: waiting for work, at wave ends, or not scheduled
   double cpu = 0.0;  // CPU time inside items: on a shared machine, busy minus time preempted
@@ -41,6 +43,17 @@ struct LoadBalance {
   double cpu_share = 1.0;  // CPU time / busy time: below 1 when other processes took the cores
 };
 
+// One rank of a distributed render, over the frame's wall time (the cluster's).
+struct RankStats {
+  int rank = 0, threads = 0;
+  double busy = 0.0;  // its threads' busy time, summed
+  double idle = 0.0;  // threads x wall minus busy
+  double communication = 0.0;  // in MPI calls: exchanging films, taking work, waiting for the others
+  double cpu = 0.0;
+  std::uint64_t items = 0;
+  double efficiency = 1.0;  // busy / (threads x wall)
+};
+
 struct FrameProfile {
   WorkPlan plan;
   std::vector<WaveStats> waves;
@@ -48,7 +61,11 @@ struct FrameProfile {
   std::vector<double> item_seconds;  // per item, summed over waves: wall time
   std::vector<double> item_cpu_seconds;  // the same in thread CPU time
   std::vector<TileRecord> records;  // waves x items, wave-major; empty unless asked for
-  LoadBalance balance;
+  LoadBalance balance;  // a distributed render: over every thread of every rank
+  // A distributed render, on rank 0 (empty otherwise): every rank, and for each tile the rank
+  // that spent the most CPU time on it (summed over the waves).
+  std::vector<RankStats> ranks;
+  std::vector<int> tile_rank;
 };
 
 // Busy and idle per thread, efficiency, imbalance and tail, from what the threads recorded.

@@ -12,6 +12,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/partitioner.h>
 #include <tbb/task_arena.h>
+#include <tbb/task_group.h>
 
 #include "renderer/named_enum.h"
 
@@ -134,10 +135,32 @@ WaveRunner::WaveRunner(const WorkPlan& plan) : plan_(plan) {
   if (plan.params.scheduler == SchedulerKind::tiles) arena_ = std::make_unique<Arena>(plan.params.threads);
 }
 
-void WaveRunner::run_range(std::size_t begin, std::size_t end, const ItemBody& body) {
+void WaveRunner::run_batches(const NextBatch& next, const ItemBody& body) {
   if (!arena_) arena_ = std::make_unique<Arena>(plan_.params.threads);
+  const std::size_t threads = static_cast<std::size_t>(plan_.params.threads);
+  const std::thread::id caller = std::this_thread::get_id();
   arena_->arena.execute([&] {
-    run_tiles_dynamic(end - begin, [&](std::size_t i) { body(begin + i, tbb::this_task_arena::current_thread_index()); });
+    tbb::task_group group;
+    std::atomic<std::size_t> waiting{0};  // items handed to the group, not yet started
+    bool more = true;  // touched by the calling thread only
+    std::function<void()> refill = [&] {
+      while (more && waiting.load() < threads) {
+        const auto [begin, end] = next();
+        if (begin >= end) {
+          more = false;
+          break;
+        }
+        waiting += end - begin;
+        for (std::size_t i = begin; i < end; ++i)
+          group.run([&, i] {
+            --waiting;
+            body(i, tbb::this_task_arena::current_thread_index());
+            if (std::this_thread::get_id() == caller) refill();
+          });
+      }
+    };
+    refill();
+    group.wait();
   });
 }
 

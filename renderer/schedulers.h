@@ -68,9 +68,13 @@ class WaveRunner {
 
   // Returns when every item has run once.
   void run(const ItemBody& body);
-  // Items [begin, end) only, handed dynamically to the plan's threads (what a rank of a
-  // distributed render runs of each batch it takes), whatever the scheduler.
-  void run_range(std::size_t begin, std::size_t end, const ItemBody& body);
+  // The items of batches `next` hands out ([begin, end); empty: no more), run by the plan's
+  // threads as they come, whatever the scheduler: what a rank of a distributed render runs of
+  // the batches it takes from the shared counter. `next` is called on the calling thread
+  // only (MPI's), first at once, then whenever fewer items than threads wait to start and
+  // this thread has finished an item, so the threads need not wait at a batch's end.
+  using NextBatch = std::function<std::pair<std::size_t, std::size_t>()>;
+  void run_batches(const NextBatch& next, const ItemBody& body);
 
  private:
   struct Arena;

@@ -90,6 +90,31 @@ TEST(Heatmap, ColourBarSpansZeroToTheDearestTileInItsUnit) {
   expect_colour(idle.cells[1].colour, kViridis0, "no cost anywhere");
 }
 
+// Two ranks, each the busiest on one tile: each tile in its rank's colour, a legend of ranks.
+TEST(Heatmap, ByRankColoursEachTileAsTheRankThatSpentMostOnIt) {
+  FrameProfile p = two_tiles(0.010, 0.040);
+  p.ranks.resize(2);
+  p.tile_rank = {1, 0};
+  const HeatmapPlot h = heatmap_plot(p, {"ranks", HeatmapBy::rank});
+  ASSERT_EQ(h.cells.size(), 2u);
+  EXPECT_EQ(h.cells[0].rank, 1);
+  expect_colour(h.cells[0].colour, hex_colour(0xD55E00), "rank 1: Okabe-Ito vermillion");
+  expect_colour(h.cells[1].colour, hex_colour(0x0072B2), "rank 0: Okabe-Ito blue");
+  ASSERT_EQ(h.legend.size(), 2u);
+  EXPECT_EQ(h.legend[1].label, "rank 1");
+  EXPECT_TRUE(h.bar_ticks.empty());
+  EXPECT_EQ(h.summary, "tile colour: the rank that spent the most CPU time on it; 2 ranks, cluster efficiency 90.0%");
+  // More ranks than category colours: viridis over the rank number, with a bar.
+  p.ranks.resize(9);
+  p.tile_rank = {8, 0};
+  const HeatmapPlot many = heatmap_plot(p, {"ranks", HeatmapBy::rank});
+  EXPECT_TRUE(many.legend.empty());
+  expect_colour(many.cells[0].colour, kViridis1, "the last rank");
+  expect_colour(many.cells[1].colour, kViridis0, "rank 0");
+  EXPECT_EQ(many.bar_label, "rank");
+  EXPECT_DOUBLE_EQ(many.bar_max, 8.0);
+}
+
 TEST(Heatmap, WritesPngAndSvg) {
   const std::string dir = test::make_temp_dir("heatmap");
   const FrameProfile profile = two_tiles(0.010, 0.040);
@@ -144,6 +169,30 @@ TEST(ScalingPlot, PlotsEachSchedulersSpeedupsAndTheIdealLine) {
   EXPECT_EQ(p.x_ticks, (std::vector<double>{1, 2, 3}));
   EXPECT_EQ(p.y_ticks, (std::vector<double>{0, 1, 2, 3, 4}));
   EXPECT_EQ(p.cores, 2);
+}
+
+// Ranks x threads: a series per scheduler and rank count, against the threads of all ranks.
+TEST(ScalingPlot, PlotsRankCountsAgainstTheThreadsOfAllRanks) {
+  ScalingReport r = two_schedulers();
+  r.schedulers = {"tiles"};
+  r.rows.resize(3);  // tiles at 1, 2 and 3 threads
+  r.ranks_max = 2;
+  for (int n = 1; n <= 3; ++n) {
+    ScalingRow row;
+    row.scheduler = "tiles";
+    row.ranks = 2;
+    row.threads = n;
+    row.speedup = 1.5 * n;
+    r.rows.push_back(row);
+  }
+  const ScalingPlot p = scaling_plot(r);
+  EXPECT_EQ(p.title, "box.gltf: speedup against ranks x threads (64x48, 2 spp, 2 cores)");
+  ASSERT_EQ(p.series.size(), 3u);
+  EXPECT_EQ(p.series[0].name, "tiles");
+  EXPECT_EQ(p.series[1].name, "tiles, 2 ranks");
+  EXPECT_EQ(p.series[1].points, (std::vector<Point>{{2, 1.5}, {4, 3.0}, {6, 4.5}}));
+  EXPECT_DOUBLE_EQ(p.x_max, 6.0);
+  EXPECT_EQ(p.series[2].points, (std::vector<Point>{{1, 1}, {6, 6}}));  // the ideal line
 }
 
 TEST(ScalingPlot, WritesSvgOrPng) {

@@ -2,47 +2,19 @@
 // (Open MPI, --oversubscribe on this 2-core machine), against the same render in one process.
 // Every rank renders the tiles it takes from the shared counter (or its block), and after each
 // wave the ranks exchange those tiles' pixels, so the image is the single process's bit for bit.
-#include <gtest/gtest.h>
-
-#include <cstdio>
-#include <cstdlib>
-#include <fstream>
 #include <string>
-#include <unistd.h>
 
-#include "tests/exr_read.h"
-#include "tests/test_support.h"
+#include "tests/mpi_support.h"
 
 namespace tessera {
 namespace {
 
-std::string quote(const std::string& s) { return "'" + s + "'"; }
+using test::expect_same_pixels;
+using test::mpirun;
+using test::quote;
+using test::render_args;
 
-bool have_mpirun() { return std::system("command -v mpirun > /dev/null 2>&1") == 0; }
-
-// Open MPI refuses root without --allow-run-as-root (CI runs as root); --bind-to none lets
-// each rank's TBB threads use every core. Leak checking is off for the ranks: a sanitizer
-// build would report Open MPI's own allocations, which it keeps until exit.
-std::string mpirun(int ranks) {
-  return "env ASAN_OPTIONS=detect_leaks=0 timeout 300 mpirun --oversubscribe --bind-to none " +
-         std::string(geteuid() == 0 ? "--allow-run-as-root " : "") + "-np " + std::to_string(ranks) + " ";
-}
-
-std::string render_args(const std::string& out, const std::string& extra) {
-  return quote(test::tessera_exe()) + " render " + quote(test::scene_path("cornell-box/cornell-box.gltf")) +
-         " --width 40 --height 36 --seed 9 -o " + quote(out) + " " + extra;
-}
-
-void expect_same_pixels(const std::string& a, const std::string& b) {
-  EXPECT_EQ(test::exr_rgb(a), test::exr_rgb(b)) << a << " and " << b << " differ";
-}
-
-class MpiRender : public ::testing::Test {
- protected:
-  void SetUp() override {
-    if (!have_mpirun()) GTEST_SKIP() << "mpirun not found (apt-get install openmpi-bin)";
-  }
-};
+using MpiRender = test::MpiTest;
 
 TEST_F(MpiRender, AnyNumberOfRanksGivesTheSingleProcessBits) {
   const std::string dir = test::make_temp_dir("mpi-ranks");
@@ -115,28 +87,12 @@ TEST_F(MpiRender, SequencesHandWholeFramesToRanks) {
 // rank 0 wrote before it resumes, in one process, to the uninterrupted frame's bits.
 TEST_F(MpiRender, AKilledRankEndsTheJobAndTheCheckpointResumes) {
   const std::string dir = test::make_temp_dir("mpi-kill");
-  const std::string out = dir + "/k.exr", opts = "-q --spp 1024 --checkpoint 0.001 ";
-  std::ofstream(dir + "/kill.sh") << R"sh(out=$1; shift
-"$@" > /dev/null 2>&1 &
-job=$!
-for i in $(seq 1 3000); do [ -f "$out" ] && break; sleep 0.01; done
-t0=$(date +%s%N)
-for p in $(pgrep -f -- "$out"); do
-  if grep -qa "OMPI_COMM_WORLD_RANK=1" "/proc/$p/environ" 2>/dev/null; then kill -9 "$p"; fi
-done
-wait $job; rc=$?
-echo "rc=$rc ms=$(( ($(date +%s%N) - t0) / 1000000 ))")sh";
-  const auto r = test::run_command("bash " + quote(dir + "/kill.sh") + " " + quote(out) + " " + mpirun(2) +
-                                   render_args(out, opts));
-  int rc = 0, ms = 0;
-  ASSERT_EQ(std::sscanf(r.out.c_str(), "rc=%d ms=%d", &rc, &ms), 2) << r.out << r.err;
-  EXPECT_NE(rc, 0) << "the job went on without its rank";
-  EXPECT_LT(ms, 60000) << "the job took too long to end";
-  ASSERT_EQ(test::exr_int(out, "partial"), 1) << "no checkpoint before the kill: nothing to test";
-  const auto resumed = test::run_command(render_args(out, opts + "--resume " + quote(out)));
-  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
-  ASSERT_EQ(test::run_command(render_args(dir + "/whole.exr", opts)).exit_code, 0);
-  expect_same_pixels(dir + "/whole.exr", out);
+  const std::string out = dir + "/k.exr", opts = "-q --spp 256 --checkpoint 0.001";
+  const test::SignalledJob job = test::run_signalled(out, "9", "OMPI_COMM_WORLD_RANK=1", mpirun(2) + render_args(out, opts));
+  EXPECT_NE(job.rc, 0) << "the job went on without its rank";
+  EXPECT_GE(job.ms, 0) << job.log;
+  EXPECT_LT(job.ms, 60000) << "the job took too long to end";
+  test::expect_resumes_to_whole(out, opts);
 }
 
 // Rank 0 speaks for all: one summary; and a scene no rank can read ends the whole job with

@@ -36,8 +36,15 @@ def load(path):
         trace = json.load(f)
     events = trace["traceEvents"] if isinstance(trace, dict) else trace
     slices = [e for e in events if e.get("ph") == "X"]
-    names = {e["tid"]: e["args"]["name"] for e in events if e.get("ph") == "M" and e.get("name") == "thread_name"}
-    process = next((e["args"]["name"] for e in events if e.get("ph") == "M" and e.get("name") == "process_name"), "")
+    # A track per (process, thread): under MPI a process per rank, named "rank N".
+    processes = {e["pid"]: e["args"]["name"] for e in events if e.get("ph") == "M" and e.get("name") == "process_name"}
+    names = {(e["pid"], e["tid"]): e["args"]["name"] for e in events
+             if e.get("ph") == "M" and e.get("name") == "thread_name"}
+    if len(processes) > 1:
+        names = {k: f"{processes.get(k[0], k[0])} {v}" for k, v in names.items()}
+    for s in slices:
+        s["track"] = (s.get("pid", 1), s["tid"])
+    process = next(iter(processes.values()), "") if len(processes) == 1 else f"{len(processes)} ranks"
     waves = sorted(e["ts"] for e in events if e.get("ph") == "i")
     return slices, names, process, waves, trace.get("otherData", {}) if isinstance(trace, dict) else {}
 
@@ -48,7 +55,7 @@ def wave_of(name):
 
 
 def draw(slices, names, title, waves, width):
-    tids = sorted(set(names) | {s["tid"] for s in slices})
+    tids = sorted(set(names) | {s["track"] for s in slices})
     t0 = min([s["ts"] for s in slices] + waves)
     t1 = max(s["ts"] + s["dur"] for s in slices)
     span = max(t1 - t0, 1e-9)
@@ -62,16 +69,16 @@ def draw(slices, names, title, waves, width):
            f'<text x="{LEFT}" y="24" font-size="15">{esc(title)}</text>']
     busy = {tid: 0.0 for tid in tids}
     for s in slices:
-        busy[s["tid"]] += s["dur"]
+        busy[s["track"]] += s["dur"]
     for tid in tids:
         y = row_y[tid]
         out.append(f'<rect x="{LEFT}" y="{y}" width="{plot_w}" height="{ROW}" fill="#f0f0f0"/>')
-        label = f'{names.get(tid, "thread %d" % tid)}  {100.0 * busy[tid] / span:.0f}%'
+        label = f'{names.get(tid, "thread %d" % tid[1])}  {100.0 * busy[tid] / span:.0f}%'
         out.append(f'<text x="{LEFT - 8}" y="{y + ROW / 2 + 4}" text-anchor="end">{esc(label)}</text>')
     for s in slices:
         colour = WAVE_COLOURS[wave_of(s.get("name", "")) % len(WAVE_COLOURS)]
         w = max(s["dur"] / span * plot_w, 0.3)
-        out.append(f'<rect x="{x(s["ts"]):.2f}" y="{row_y[s["tid"]]}" width="{w:.2f}" height="{ROW}" '
+        out.append(f'<rect x="{x(s["ts"]):.2f}" y="{row_y[s["track"]]}" width="{w:.2f}" height="{ROW}" '
                    f'fill="{colour}" stroke="white" stroke-width="0.3"><title>{esc(s.get("name", ""))}</title></rect>')
     bottom = TOP + len(tids) * (ROW + GAP) - GAP
     for t in waves:
