@@ -21,6 +21,7 @@
 #include "scene_io/gltf_material.h"
 #include "scene_io/gltf_mesh.h"
 #include "scene_io/gltf_parse.h"
+#include "scene_io/gltf_usage.h"
 #include "scene_io/gltf_variants.h"
 #include "scene_io/load_error.h"
 
@@ -49,22 +50,32 @@ class Converter {
 
   void run(const GltfLoadParams& params) {
     check_extensions();
-    out_.materials = convert_materials(model_, file_, defects_, warnings_);
     result_.material_variants = read_material_variants(model_, file_);
     if (!params.variant.empty())
       result_.material_variant = choose_material_variant(result_.material_variants, params.variant, file_);
     out_.images = convert_images(model_, file_);
     parent_ = check_node_hierarchy(model_, file_);
-    result_.animations = read_animations(model_, reader_, file_);
+    const std::vector<int> roots = scene_roots(model_, choose_scene(params.scene), parent_, file_);
+    result_.animations = animation_names(model_);
     result_.playing = choose_animations(result_.animations, params.animation, file_);
-    result_.skins = read_skins(model_, reader_, file_);
+    // What the scene does not use may be broken: a warning (docs/reliability.md).
+    const GltfUsage used = find_used_objects(model_, roots, parent_, result_.playing);
+    out_.materials = convert_materials(model_, file_, defects_, used.materials, warnings_);
+    for (std::size_t a = 0; a < model_.animations.size(); ++a)
+      result_.animations[a] = defects_.read_object(
+          used.animations[a], fmt::format("animation {}", a), file_, warnings_,
+          [&] { return read_animation(model_, a, reader_, file_); }, result_.animations[a]);
+    for (std::size_t s = 0; s < model_.skins.size(); ++s)
+      result_.skins.push_back(defects_.read_object(used.skins[s], fmt::format("skin {}", s), file_, warnings_,
+                                                   [&] { return read_skin(model_, s, reader_, file_); },
+                                                   Skin{skin_name(model_, s), {}, {}, -1}));
     pose_steps(params);
     out_.animated = std::any_of(result_.playing.begin(), result_.playing.end(),
                                 [&](int a) { return !result_.animations[a].channels.empty(); });
     for (const tinygltf::Mesh& m : model_.meshes)
       result_.morph_meshes += std::any_of(m.primitives.begin(), m.primitives.end(),
                                           [](const tinygltf::Primitive& p) { return !p.targets.empty(); });
-    traverse(scene_roots(model_, choose_scene(params.scene), parent_, file_));
+    traverse(roots);
     for (std::string& w : defects_.unused_warnings()) warnings_.push_back(std::move(w));
     check_unread_accessors();
   }
@@ -82,7 +93,7 @@ class Converter {
       try {
         whole.floats(static_cast<int>(i), components, "unused");
       } catch (const SceneLoadError& e) {
-        warnings_.push_back("ignored, as the scene does not use it: " + e.problem());
+        warnings_.push_back(kUnusedPrefix + e.problem());
       }
     }
   }
@@ -353,7 +364,6 @@ class Converter {
       if (prim->material >= static_cast<int>(out_.materials.size()))
         fail(fmt::format("{} refers to material {}, but the file has {}", what, prim->material,
                          count_of(out_.materials.size(), "material")));
-      if (prim->material >= 0) defects_.check_used(fmt::format("material {}", prim->material), file_);
       if (!prim->indices.empty()) mesh.primitives.push_back(std::move(*prim));
     }
     return mesh;
