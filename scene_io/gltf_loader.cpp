@@ -193,6 +193,7 @@ class Converter {
       fail(fmt::format("its default scene is {}, but the file has {}", index,
                        count_of(scenes.size(), "scene")));
     }
+    defects_.check_used(fmt::format("scene {}", index), file_);
     out_.scene_name = scenes[index].name.empty() ? std::to_string(index) : scenes[index].name;
     return index;
   }
@@ -203,6 +204,7 @@ class Converter {
     while (!stack.empty()) {
       const int index = stack.back();
       stack.pop_back();
+      defects_.check_used(fmt::format("node {}", index), file_);
       const tinygltf::Node& node = model_.nodes[index];
       for (int k = 0; k < steps(); ++k) world(index, k);
       if (node.mesh >= 0) add_instance(node, index);
@@ -409,6 +411,7 @@ class Converter {
     if (node.camera >= static_cast<int>(model_.cameras.size()))
       fail(fmt::format("node {} refers to camera {}, but the file has {}", index, node.camera,
                        count_of(model_.cameras.size(), "camera")));
+    defects_.check_used(fmt::format("camera {}", node.camera), file_);
     const tinygltf::Camera& src = model_.cameras[node.camera];
     Camera cam;
     cam.name = !src.name.empty() ? src.name : !node.name.empty() ? node.name
@@ -459,6 +462,7 @@ class Converter {
     if (light < 0 || light >= static_cast<int>(model_.lights.size()))
       fail(fmt::format("node {} refers to light {}, but the file has {}", index, light,
                        count_of(model_.lights.size(), "light")));
+    defects_.check_used(fmt::format("light {}", light), file_);
     const tinygltf::Light& src = model_.lights[light];
     PunctualLight l;
     l.name = src.name.empty() ? fmt::format("light {}", light) : src.name;

@@ -37,6 +37,7 @@ TextureRef texture_ref(const tinygltf::Model& model, const std::string& file, co
   if (index >= static_cast<int>(model.textures.size()))
     throw SceneLoadError(file, fmt::format("{} refers to texture {}, but the file has {}", what,
                                            index, count_of(model.textures.size(), "texture")));
+  defects.check_used(fmt::format("texture {}", index), file);
   const tinygltf::Texture& tex = model.textures[index];
   const int source = texture_image(model, file, index, defects);
   if (source < 0) {
@@ -49,6 +50,7 @@ TextureRef texture_ref(const tinygltf::Model& model, const std::string& file, co
     throw SceneLoadError(file, fmt::format("texture {} refers to sampler {}, but the file has {}",
                                            index, tex.sampler, count_of(model.samplers.size(), "sampler")));
   if (tex.sampler >= 0) {
+    defects.check_used(fmt::format("sampler {}", tex.sampler), file);
     const tinygltf::Sampler& s = model.samplers[tex.sampler];
     ref.wrap_s = wrap_mode(s.wrapS);
     ref.wrap_t = wrap_mode(s.wrapT);
