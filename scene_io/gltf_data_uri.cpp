@@ -1,5 +1,6 @@
 #include "scene_io/gltf_data_uri.h"
 
+#include <algorithm>
 #include <cctype>
 
 #include <fmt/format.h>
@@ -92,6 +93,18 @@ std::optional<DataUri> decode_data_uri(const std::string& uri, std::string& prob
   const bool base64 = header.size() >= 7 && header.compare(header.size() - 7, 7, ";base64") == 0;
   DataUri out;
   out.media_type = header.substr(0, header.find(';'));
+  for (char& c : out.media_type) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));  // RFC 2045
+  // Between the media type and ";base64", only attribute=value parameters.
+  const std::size_t params_end = base64 ? header.size() - 7 : header.size();
+  for (std::size_t at = header.find(';'); at < params_end;) {
+    const std::size_t next = std::min(header.find(';', at + 1), params_end);
+    const std::string parameter = header.substr(at + 1, next - at - 1);
+    if (parameter.find('=') == std::string::npos || parameter.front() == '=') {
+      problem = fmt::format("whose header has a parameter '{}' that is not attribute=value", parameter.substr(0, 40));
+      return std::nullopt;
+    }
+    at = next;
+  }
   std::optional<std::string> data = percent_decoded(uri.substr(comma + 1), problem);
   if (!data) return std::nullopt;
   if (!base64) {
