@@ -278,6 +278,13 @@ Problem check_animation(const Json& animation, std::size_t i) {
                      first, incomplete > 1 ? fmt::format(" (and {} more)", incomplete - 1) : "");
 }
 
+Problem check_scene(const Json& scene, std::size_t i) {
+  const Json* nodes = member(scene, "nodes");
+  if (nodes && (!nodes->is_array() || nodes->empty()))
+    return fmt::format("scene {} has a \"nodes\" that is not an array of at least one node", i);
+  return std::nullopt;
+}
+
 Problem check_light(const Json& light, std::size_t i) {
   const Json* type = member(light, "type");
   if (!type || !type->is_string()) return fmt::format("light {} has no type", i);
@@ -379,6 +386,7 @@ std::vector<GltfObjectProblem> find_object_problems(const nlohmann::json& j, con
     else if (k == "cameras") check_all(key, noun, array, check_camera);
     else if (k == "skins") check_all(key, noun, array, check_skin);
     else if (k == "animations") check_all(key, noun, array, check_animation);
+    else if (k == "scenes") check_all(key, noun, array, check_scene);
     else check_all(key, noun, array, none);
   }
   check_all("lights", "light", lights_of(j), check_light);

@@ -17,6 +17,7 @@
 
 #include "scene_io/gltf_accessor.h"
 #include "scene_io/gltf_hierarchy.h"
+#include "scene_io/gltf_images.h"
 #include "scene_io/gltf_instancing.h"
 #include "scene_io/gltf_material.h"
 #include "scene_io/gltf_mesh.h"
@@ -76,12 +77,34 @@ class Converter {
       result_.morph_meshes += std::any_of(m.primitives.begin(), m.primitives.end(),
                                           [](const tinygltf::Primitive& p) { return !p.targets.empty(); });
     traverse(roots);
+    check_unused_objects(used);
     for (std::string& w : defects_.unused_warnings()) warnings_.push_back(std::move(w));
     check_unread_accessors();
   }
 
  private:
   [[noreturn]] void fail(const std::string& problem) const { throw SceneLoadError(file_, problem); }
+
+  // The policy for meshes, cameras and textures the scene does not use: each is read as a whole
+  // (a texture the used materials showed reads again without a problem), and what would refuse
+  // a used one is a warning.
+  void check_unused_objects(const GltfUsage& used) {
+    for (std::size_t m = 0; m < model_.meshes.size(); ++m)
+      if (!used.meshes[m])
+        defects_.read_object(false, fmt::format("mesh {}", m), file_, warnings_,
+                             [&] { return convert_mesh(static_cast<int>(m), Deformation{}); }, Mesh{});
+    for (std::size_t c = 0; c < model_.cameras.size(); ++c)
+      if (!used.cameras[c])
+        defects_.read_object(false, fmt::format("camera {}", c), file_, warnings_,
+                             [&] { return camera_projection(static_cast<int>(c)); }, Camera{});
+    for (std::size_t t = 0; t < model_.textures.size(); ++t)
+      defects_.read_object(false, fmt::format("texture {}", t), file_, warnings_,
+                           [&] {
+                             texture_image(model_, file_, static_cast<int>(t), defects_);
+                             return texture_sampler(model_, file_, static_cast<int>(t), defects_);
+                           },
+                           static_cast<const tinygltf::Sampler*>(nullptr));
+  }
 
   // The policy for accessors nothing read: what would refuse a used one (NaN, a range past its
   // bufferView) is a warning. Read as a whole, without the reader's log.
@@ -412,15 +435,21 @@ class Converter {
       fail(fmt::format("node {} refers to camera {}, but the file has {}", index, node.camera,
                        count_of(model_.cameras.size(), "camera")));
     defects_.check_used(fmt::format("camera {}", node.camera), file_);
-    const tinygltf::Camera& src = model_.cameras[node.camera];
-    Camera cam;
-    cam.name = !src.name.empty() ? src.name : !node.name.empty() ? node.name
-                                                                 : fmt::format("camera {}", node.camera);
+    Camera cam = camera_projection(node.camera);
+    if (model_.cameras[node.camera].name.empty() && !node.name.empty()) cam.name = node.name;
     std::vector<glm::mat4> frames;
     for (const glm::mat4& w : worlds(index)) frames.push_back(camera_frame(w, index, node.camera));
     cam.camera_to_world = frames[0];
     if (std::any_of(frames.begin(), frames.end(), [&](const glm::mat4& m) { return m != frames[0]; }))
       cam.motion.assign(frames.begin() + 1, frames.end());
+    out_.cameras.push_back(cam);
+  }
+
+  // Camera `index`'s projection, checked; named by the file or "camera N".
+  Camera camera_projection(int index) const {
+    const tinygltf::Camera& src = model_.cameras[index];
+    Camera cam;
+    cam.name = !src.name.empty() ? src.name : fmt::format("camera {}", index);
     if (src.type == "orthographic") {
       cam.projection = Camera::Projection::Orthographic;
       cam.xmag = static_cast<float>(std::abs(src.orthographic.xmag));
@@ -428,7 +457,7 @@ class Converter {
       cam.znear = static_cast<float>(src.orthographic.znear);
       cam.zfar = static_cast<float>(src.orthographic.zfar);
       if (!(cam.xmag > 0 && cam.ymag > 0 && std::isfinite(cam.xmag) && std::isfinite(cam.ymag)))
-        fail(fmt::format("camera {} has invalid xmag/ymag", node.camera));
+        fail(fmt::format("camera {} has invalid xmag/ymag", index));
     } else if (src.type == "perspective") {
       cam.yfov = static_cast<float>(src.perspective.yfov);
       cam.aspect_ratio = static_cast<float>(src.perspective.aspectRatio);
@@ -436,13 +465,15 @@ class Converter {
       cam.zfar = static_cast<float>(src.perspective.zfar);
       if (!(cam.yfov > 0 && cam.yfov < 3.1415926f))
         fail(fmt::format("camera {} has yfov {}; a perspective camera needs 0 < yfov < pi radians",
-                         node.camera, src.perspective.yfov));
+                         index, src.perspective.yfov));
       if (!(cam.aspect_ratio >= 0 && std::isfinite(cam.aspect_ratio)))
-        fail(fmt::format("camera {} has an invalid aspectRatio", node.camera));
+        fail(fmt::format("camera {} has an invalid aspectRatio", index));
     } else {
-      fail(fmt::format("camera {} has unknown type '{}'", node.camera, src.type));
+      fail(fmt::format("camera {} has unknown type '{}'", index, src.type));
     }
-    out_.cameras.push_back(cam);
+    if (cam.zfar > 0 && !(cam.zfar > cam.znear))
+      fail(fmt::format("camera {} has zfar {} not beyond its znear {}", index, cam.zfar, cam.znear));
+    return cam;
   }
 
   // Cameras ignore the node's scale: an orthonormal frame and the position.

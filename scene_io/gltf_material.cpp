@@ -38,7 +38,6 @@ TextureRef texture_ref(const tinygltf::Model& model, const std::string& file, co
     throw SceneLoadError(file, fmt::format("{} refers to texture {}, but the file has {}", what,
                                            index, count_of(model.textures.size(), "texture")));
   defects.check_used(fmt::format("texture {}", index), file);
-  const tinygltf::Texture& tex = model.textures[index];
   const int source = texture_image(model, file, index, defects);
   if (source < 0) {
     warnings.push_back(fmt::format("texture {} has no image tessera can decode; ignored", index));
@@ -46,15 +45,10 @@ TextureRef texture_ref(const tinygltf::Model& model, const std::string& file, co
   }
   ref.image = source;
   ref.texcoord = texcoord;
-  if (tex.sampler >= static_cast<int>(model.samplers.size()))
-    throw SceneLoadError(file, fmt::format("texture {} refers to sampler {}, but the file has {}",
-                                           index, tex.sampler, count_of(model.samplers.size(), "sampler")));
-  if (tex.sampler >= 0) {
-    defects.check_used(fmt::format("sampler {}", tex.sampler), file);
-    const tinygltf::Sampler& s = model.samplers[tex.sampler];
-    ref.wrap_s = wrap_mode(s.wrapS);
-    ref.wrap_t = wrap_mode(s.wrapT);
-    if (s.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST) ref.filter = FilterMode::Nearest;
+  if (const tinygltf::Sampler* s = texture_sampler(model, file, index, defects)) {
+    ref.wrap_s = wrap_mode(s->wrapS);
+    ref.wrap_t = wrap_mode(s->wrapT);
+    if (s->magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST) ref.filter = FilterMode::Nearest;
   }
   if (auto it = extensions.find("KHR_texture_transform"); it != extensions.end()) {
     const tinygltf::Value& t = it->second;
@@ -116,6 +110,17 @@ Material convert_material(const tinygltf::Model& model, std::size_t i, const std
 }
 
 }  // namespace
+
+const tinygltf::Sampler* texture_sampler(const tinygltf::Model& model, const std::string& file, int index,
+                                         const GltfDefects& defects) {
+  const int sampler = model.textures[index].sampler;
+  if (sampler >= static_cast<int>(model.samplers.size()))
+    throw SceneLoadError(file, fmt::format("texture {} refers to sampler {}, but the file has {}", index, sampler,
+                                           count_of(model.samplers.size(), "sampler")));
+  if (sampler < 0) return nullptr;
+  defects.check_used(fmt::format("sampler {}", sampler), file);
+  return &model.samplers[sampler];
+}
 
 std::vector<Material> convert_materials(const tinygltf::Model& model, const std::string& file,
                                         const GltfDefects& defects, const std::vector<bool>& used,

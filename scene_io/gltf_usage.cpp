@@ -17,7 +17,8 @@ void mark_with_ancestors(int node, const std::vector<int>& parent, std::vector<b
 GltfUsage find_used_objects(const tinygltf::Model& model, const std::vector<int>& roots,
                             const std::vector<int>& parent, const std::vector<int>& playing) {
   const std::size_t nodes = model.nodes.size();
-  GltfUsage used{std::vector<bool>(nodes, false), std::vector<bool>(model.materials.size(), false),
+  GltfUsage used{std::vector<bool>(nodes, false), std::vector<bool>(model.meshes.size(), false),
+                 std::vector<bool>(model.cameras.size(), false), std::vector<bool>(model.materials.size(), false),
                  std::vector<bool>(model.skins.size(), false), std::vector<bool>(model.animations.size(), false)};
   std::vector<bool> moves_shown(nodes, false);  // animating it moves something the scene shows
   std::vector<int> stack(roots.begin(), roots.end());
@@ -30,7 +31,9 @@ GltfUsage find_used_objects(const tinygltf::Model& model, const std::vector<int>
     for (int c : node.children) stack.push_back(c);
     const bool light = node.extensions.count("KHR_lights_punctual") > 0;
     if (node.mesh >= 0 || node.camera >= 0 || light) mark_with_ancestors(n, parent, moves_shown);
+    if (in_range(node.camera, model.cameras.size())) used.cameras[node.camera] = true;
     if (!in_range(node.mesh, model.meshes.size())) continue;
+    used.meshes[node.mesh] = true;
     for (const tinygltf::Primitive& prim : model.meshes[node.mesh].primitives) {
       if (in_range(prim.material, model.materials.size())) used.materials[prim.material] = true;
       for (int m : mapped_materials(prim))

@@ -56,9 +56,9 @@ TEST(GltfConformance, UnusedObjectsOfEveryKindLoadInvalidOnesWithAWarning) {
   const GltfLoadResult r = load("unused_objects.gltf");
   EXPECT_EQ(triangles(r.scene), 1u);  // scene 0 places mesh 0 once; scene 1, mesh 1 unused
   EXPECT_EQ(r.warnings, (std::vector<std::string>{
-                            "ignored, as the scene does not use it: accessor 1 has unknown type 'VEC5'",
                             "ignored, as the scene does not use it: image 0 (bufferView 2) could not be decoded: "
-                            "it is not a PNG, JPEG or WebP image"}));
+                            "it is not a PNG, JPEG or WebP image",
+                            "ignored, as the scene does not use it: accessor 1 has unknown type 'VEC5'"}));
 }
 
 TEST(GltfConformance, InvalidObjectsTheSceneDoesNotUseAreWarnings) {
