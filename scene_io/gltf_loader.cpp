@@ -51,9 +51,6 @@ class Converter {
 
   void run(const GltfLoadParams& params) {
     check_extensions();
-    result_.material_variants = read_material_variants(model_, file_);
-    if (!params.variant.empty())
-      result_.material_variant = choose_material_variant(result_.material_variants, params.variant, file_);
     out_.images = convert_images(model_, file_);
     parent_ = check_node_hierarchy(model_, file_);
     const std::vector<int> roots = scene_roots(model_, choose_scene(params.scene), parent_, file_);
@@ -61,6 +58,12 @@ class Converter {
     result_.playing = choose_animations(result_.animations, params.animation, file_);
     // What the scene does not use may be broken: a warning (docs/reliability.md).
     const GltfUsage used = find_used_objects(model_, roots, parent_, result_.playing);
+    // The file's variant names are used when one is chosen or a used primitive maps variants.
+    result_.material_variants = defects_.read_object(
+        !params.variant.empty() || maps_variants(used), kMaterialsVariants, file_, warnings_,
+        [&] { return read_material_variants(model_, file_); }, std::vector<std::string>{});
+    if (!params.variant.empty())
+      result_.material_variant = choose_material_variant(result_.material_variants, params.variant, file_);
     out_.materials = convert_materials(model_, file_, defects_, used.materials, warnings_);
     for (std::size_t a = 0; a < model_.animations.size(); ++a)
       result_.animations[a] = defects_.read_object(
@@ -85,7 +88,15 @@ class Converter {
  private:
   [[noreturn]] void fail(const std::string& problem) const { throw SceneLoadError(file_, problem); }
 
-  // The policy for meshes, cameras and textures the scene does not use: each is read as a whole
+  // True when a primitive of a used mesh has KHR_materials_variants mappings.
+  bool maps_variants(const GltfUsage& used) const {
+    for (std::size_t m = 0; m < model_.meshes.size(); ++m)
+      for (const tinygltf::Primitive& prim : model_.meshes[m].primitives)
+        if (used.meshes[m] && prim.extensions.count(kMaterialsVariants)) return true;
+    return false;
+  }
+
+  // The policy for meshes, cameras, lights and textures the scene does not use: each is read as a whole
   // (a texture the used materials showed reads again without a problem), and what would refuse
   // a used one is a warning.
   void check_unused_objects(const GltfUsage& used) {
@@ -97,6 +108,10 @@ class Converter {
       if (!used.cameras[c])
         defects_.read_object(false, fmt::format("camera {}", c), file_, warnings_,
                              [&] { return camera_projection(static_cast<int>(c)); }, Camera{});
+    for (std::size_t l = 0; l < model_.lights.size(); ++l)
+      if (!used.lights[l])
+        defects_.read_object(false, fmt::format("light {}", l), file_, warnings_,
+                             [&] { return light_properties(static_cast<int>(l)); }, PunctualLight{});
     for (std::size_t t = 0; t < model_.textures.size(); ++t)
       defects_.read_object(false, fmt::format("texture {}", t), file_, warnings_,
                            [&] {
@@ -494,28 +509,40 @@ class Converter {
       fail(fmt::format("node {} refers to light {}, but the file has {}", index, light,
                        count_of(model_.lights.size(), "light")));
     defects_.check_used(fmt::format("light {}", light), file_);
-    const tinygltf::Light& src = model_.lights[light];
-    PunctualLight l;
-    l.name = src.name.empty() ? fmt::format("light {}", light) : src.name;
-    if (src.type == "point") l.type = PunctualLight::Type::Point;
-    else if (src.type == "spot") l.type = PunctualLight::Type::Spot;
-    else if (src.type == "directional") l.type = PunctualLight::Type::Directional;
-    else fail(fmt::format("light {} has unknown type '{}' (expected 'directional', 'point' or 'spot')",
-                          light, src.type));
-    if (src.color.size() == 3) l.color = {src.color[0], src.color[1], src.color[2]};
-    l.intensity = static_cast<float>(src.intensity);
-    l.range = static_cast<float>(src.range);
-    l.inner_cone_angle = static_cast<float>(src.spot.innerConeAngle);
-    l.outer_cone_angle = static_cast<float>(src.spot.outerConeAngle);
+    PunctualLight l = light_properties(light);
     l.position = glm::vec3(world[3]);
     l.direction = glm::normalize(glm::vec3(world * glm::vec4(0, 0, -1, 0)));
     l.light_to_world = world;
-    bool finite = all_finite((l.color)) && std::isfinite(l.intensity) && l.intensity >= 0;
+    bool finite = true;
     for (const glm::mat4& w : placed) finite = finite && all_finite(glm::normalize(glm::vec3(w * glm::vec4(0, 0, -1, 0))));
     if (!finite) fail(fmt::format("light {} has an invalid color, intensity or direction", light));
     if (std::any_of(placed.begin(), placed.end(), [&](const glm::mat4& m) { return m != world; }))
       l.motion.assign(placed.begin() + 1, placed.end());
     out_.lights.push_back(l);
+  }
+
+  // Light `index` of KHR_lights_punctual as the file gives it, checked; not yet placed.
+  PunctualLight light_properties(int index) const {
+    const tinygltf::Light& src = model_.lights[index];
+    PunctualLight l;
+    l.name = src.name.empty() ? fmt::format("light {}", index) : src.name;
+    if (src.type == "point") l.type = PunctualLight::Type::Point;
+    else if (src.type == "spot") l.type = PunctualLight::Type::Spot;
+    else if (src.type == "directional") l.type = PunctualLight::Type::Directional;
+    else fail(fmt::format("light {} has unknown type '{}' (expected 'directional', 'point' or 'spot')",
+                          index, src.type));
+    if (src.color.size() == 3) l.color = {src.color[0], src.color[1], src.color[2]};
+    l.intensity = static_cast<float>(src.intensity);
+    l.range = static_cast<float>(src.range);
+    l.inner_cone_angle = static_cast<float>(src.spot.innerConeAngle);
+    l.outer_cone_angle = static_cast<float>(src.spot.outerConeAngle);
+    if (!(all_finite(l.color) && std::isfinite(l.intensity) && l.intensity >= 0))
+      fail(fmt::format("light {} has an invalid color, intensity or direction", index));
+    const double inner = src.spot.innerConeAngle, outer = src.spot.outerConeAngle;
+    if (l.type == PunctualLight::Type::Spot && !(inner >= 0 && inner < outer && outer <= glm::half_pi<double>()))
+      fail(fmt::format("light {} has spot cone angles {} (inner) and {} (outer); glTF requires 0 <= inner < outer "
+                       "<= pi/2", index, inner, outer));
+    return l;
   }
 
   const tinygltf::Model& model_;

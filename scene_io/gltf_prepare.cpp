@@ -257,6 +257,8 @@ std::optional<std::string> prepare_gltf_json(std::string_view json, const std::s
   bool changed = false;
   if (json.find("EXT_meshopt_compression") != std::string_view::npos) changed |= fill_fallback_buffers(j);
   if (json.find("KHR_draco_mesh_compression") != std::string_view::npos) changed |= point_draco_indices(j);
+  if (const Json* ext = extension(j, "KHR_lights_punctual"); ext && !(member(*ext, "lights") && (*ext)["lights"].is_array()))
+    defects.notes.push_back("its KHR_lights_punctual extension has no \"lights\" array");
   changed |= replace_unreadable_objects(j, context, defects);  // first: a buffer {} lacks its byteLength too
   changed |= replace_dataless_buffers(j, context, defects);
   changed |= reencode_data_uris(j);

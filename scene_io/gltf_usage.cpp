@@ -18,7 +18,8 @@ GltfUsage find_used_objects(const tinygltf::Model& model, const std::vector<int>
                             const std::vector<int>& parent, const std::vector<int>& playing) {
   const std::size_t nodes = model.nodes.size();
   GltfUsage used{std::vector<bool>(nodes, false), std::vector<bool>(model.meshes.size(), false),
-                 std::vector<bool>(model.cameras.size(), false), std::vector<bool>(model.materials.size(), false),
+                 std::vector<bool>(model.cameras.size(), false), std::vector<bool>(model.lights.size(), false),
+                 std::vector<bool>(model.materials.size(), false),
                  std::vector<bool>(model.skins.size(), false), std::vector<bool>(model.animations.size(), false)};
   std::vector<bool> moves_shown(nodes, false);  // animating it moves something the scene shows
   std::vector<int> stack(roots.begin(), roots.end());
@@ -29,8 +30,12 @@ GltfUsage find_used_objects(const tinygltf::Model& model, const std::vector<int>
     used.nodes[n] = true;
     const tinygltf::Node& node = model.nodes[n];
     for (int c : node.children) stack.push_back(c);
-    const bool light = node.extensions.count("KHR_lights_punctual") > 0;
-    if (node.mesh >= 0 || node.camera >= 0 || light) mark_with_ancestors(n, parent, moves_shown);
+    const auto light = node.extensions.find("KHR_lights_punctual");
+    if (light != node.extensions.end()) {
+      const int l = light->second.Has("light") ? light->second.Get("light").GetNumberAsInt() : -1;
+      if (in_range(l, model.lights.size())) used.lights[l] = true;
+    }
+    if (node.mesh >= 0 || node.camera >= 0 || light != node.extensions.end()) mark_with_ancestors(n, parent, moves_shown);
     if (in_range(node.camera, model.cameras.size())) used.cameras[node.camera] = true;
     if (!in_range(node.mesh, model.meshes.size())) continue;
     used.meshes[node.mesh] = true;

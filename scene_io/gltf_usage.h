@@ -1,6 +1,6 @@
 // What the chosen scene uses, for the policy in docs/reliability.md: an error in a used object
 // refuses the file, the same error in an unused one is a warning. Used are the nodes reachable
-// from the scene's roots; the meshes and cameras they place; the materials of those meshes' primitives,
+// from the scene's roots; the meshes, cameras and lights they place; the materials of those meshes' primitives,
 // each KHR_materials_variants mapping's included (any variant can be chosen); the skins of the
 // nodes that place a mesh; and the animations that play and move something the scene shows (a
 // channel on a node, or an ancestor of one, that places a mesh, camera or light, or on a joint
@@ -15,7 +15,7 @@
 namespace tessera {
 
 struct GltfUsage {
-  std::vector<bool> nodes, meshes, cameras, materials, skins, animations;  // by index in the file
+  std::vector<bool> nodes, meshes, cameras, lights, materials, skins, animations;  // by index in the file
 };
 
 // `roots` are the scene's root nodes, `parent` every node's parent (-1: none; the hierarchy
