@@ -147,6 +147,37 @@ TEST(GltfConformance, PercentEncodedDataUrisAreDecoded) {
   EXPECT_EQ(r.warnings, std::vector<std::string>{});
 }
 
+// Objects nothing in the chosen scene reaches are read as a whole, and what would refuse a used
+// one is a warning. Validator: 7 errors (UNDEFINED_PROPERTY buffer 1's byteLength, INVALID_URI
+// buffer 2's ";;base64", CAMERA_ZFAR_LEQUAL_ZNEAR, KHR_LIGHTS_PUNCTUAL_LIGHT_SPOT_ANGLES,
+// UNRESOLVED_REFERENCE texture 0's source and mesh 1's material, MESH_PRIMITIVE_TOO_FEW_TEXCOORDS).
+TEST(GltfConformance, UnusedObjectsAreReadAsAWholeAndWarnedAbout) {
+  const std::string path = test::data_path("conformance/unused_objects_read_as_a_whole.gltf");
+  const GltfLoadResult r = load_gltf(path);
+  EXPECT_EQ(triangles(r.scene), 1u);
+  const std::string ignored = "ignored, as the scene does not use it: ";
+  const std::vector<std::string> problems = {
+      "texture 0 refers to image 3, but the file has no images",
+      "mesh 1 primitive 0 refers to material 5, but the file has 1 material",
+      "buffer 1 has no valid byteLength",
+      "buffer 2 has a data URI whose header has a parameter '' that is not attribute=value",
+      "camera 0 has zfar 1 not beyond its znear 2",
+      "light 0 has spot cone angles 0.5 (inner) and 0.25 (outer); glTF requires 0 <= inner < outer <= pi/2"};
+  std::vector<std::string> expected;
+  for (const std::string& p : problems) expected.push_back(ignored + p);
+  EXPECT_EQ(r.warnings, expected);
+  // Each scene but the first uses one of them: refused with the same line.
+  const char* scenes[] = {"texture", "mesh", "buffer", "data URI", "camera", "light"};
+  for (std::size_t i = 0; i < problems.size(); ++i) {
+    try {
+      load_gltf(path, GltfLoadParams{scenes[i]});
+      ADD_FAILURE() << "scene " << scenes[i] << " loaded";
+    } catch (const SceneLoadError& e) {
+      EXPECT_EQ(e.problem(), problems[i]) << "scene " << scenes[i];
+    }
+  }
+}
+
 TEST(GltfConformance, InfoListsTheWarnings) {
   const std::string path = test::data_path("conformance/unused_invalid_objects.gltf");
   const test::CommandResult r = test::run_command(test::tessera_exe() + " info '" + path + "'");
