@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cctype>
 #include <cerrno>
 #include <cstdio>
@@ -43,6 +44,8 @@ std::size_t array_size(const Json& j, const char* key) {
 long long index_of(const Json& object, const char* key) {
   const Json* v = member(object, key);
   if (!v) return -1;
+  // (A number this program wrote into the JSON is signed: gltf_prepare.cpp's placeholders.)
+  if (v->is_number_integer() && !v->is_number_unsigned()) return v->get<std::int64_t>() >= 0 ? v->get<std::int64_t>() : -2;
   return v->is_number_unsigned() ? static_cast<long long>(v->get<std::uint64_t>()) : -2;
 }
 
@@ -100,9 +103,8 @@ Problem check_asset(const Json& j) {
 
 Problem check_buffer(const Json& b, std::size_t i, const std::string& base_dir) {
   const std::string what = fmt::format("buffer {}", i);
-  const Json* length_json = member(b, "byteLength");
-  if (!length_json || !length_json->is_number_unsigned()) return what + " has no valid byteLength";
-  const std::uint64_t length = length_json->get<std::uint64_t>();
+  if (index_of(b, "byteLength") < 0) return what + " has no valid byteLength";
+  const auto length = static_cast<std::uint64_t>(index_of(b, "byteLength"));
   const Json* uri_json = member(b, "uri");
   if (uri_json && !uri_json->is_string()) return what + " has a uri that is not a string";
   const std::string uri = uri_json ? uri_json->get<std::string>() : "";
@@ -145,6 +147,8 @@ Problem check_accessor(const Json& a, std::size_t i) {
   if (component < TINYGLTF_COMPONENT_TYPE_BYTE || component > TINYGLTF_COMPONENT_TYPE_DOUBLE)
     return fmt::format("accessor {} has no valid componentType", i);
   if (index_of(a, "count") < 0) return fmt::format("accessor {} has no valid count", i);
+  if (member(a, "byteOffset") && !member(a, "bufferView"))
+    return fmt::format("accessor {} has a byteOffset but no bufferView", i);
   const Json* sparse = member(a, "sparse");
   if (!sparse) return std::nullopt;
   const Json* indices = member(*sparse, "indices");
@@ -153,6 +157,35 @@ Problem check_accessor(const Json& a, std::size_t i) {
       index_of(indices ? *indices : Json(), "componentType") < 0 || index_of(values ? *values : Json(), "bufferView") < 0)
     return fmt::format("accessor {} has a sparse object without a count, or indices or values without a bufferView "
                        "(and the indices a componentType)", i);
+  return std::nullopt;
+}
+
+// POSITION, NORMAL, TANGENT, TEXCOORD_n, COLOR_n, JOINTS_n, WEIGHTS_n, or an application's _NAME.
+bool known_attribute(const std::string& name) {
+  if (name == "POSITION" || name == "NORMAL" || name == "TANGENT" || (!name.empty() && name[0] == '_')) return true;
+  for (const char* set : {"TEXCOORD_", "COLOR_", "JOINTS_", "WEIGHTS_"}) {
+    const std::size_t n = std::strlen(set);
+    if (name.size() > n && name.compare(0, n, set) == 0 &&
+        std::all_of(name.begin() + static_cast<std::ptrdiff_t>(n), name.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); }))
+      return true;
+  }
+  return false;
+}
+
+// Transforms tinygltf reads one way although the specification forbids them: a matrix with TRS
+// (tinygltf keeps the matrix), a rotation that is not a unit quaternion (tessera normalises it).
+Problem check_node(const Json& node, std::size_t i) {
+  if (member(node, "matrix") && (member(node, "translation") || member(node, "rotation") || member(node, "scale")))
+    return fmt::format("node {} has both a matrix and translation, rotation or scale", i);
+  const Json* rotation = member(node, "rotation");
+  if (rotation && rotation->is_array() && rotation->size() == 4 &&
+      std::all_of(rotation->begin(), rotation->end(), [](const Json& v) { return v.is_number(); })) {
+    double squared = 0;
+    for (const Json& v : *rotation) squared += v.get<double>() * v.get<double>();
+    if (std::abs(std::sqrt(squared) - 1.0) > 0.01)
+      return fmt::format("node {} has a rotation quaternion of length {:.4g}; it must be a unit quaternion", i,
+                         std::sqrt(squared));
+  }
   return std::nullopt;
 }
 
@@ -167,9 +200,13 @@ Problem check_mesh(const Json& mesh, std::size_t m, const Json& j) {
     const std::string what = fmt::format("mesh {} primitive {}", m, p);
     const Json* attributes = member((*prims)[p], "attributes");
     if (!attributes || !attributes->is_object()) return what + " has no \"attributes\" object";
-    for (auto it = attributes->begin(); it != attributes->end(); ++it)
+    for (auto it = attributes->begin(); it != attributes->end(); ++it) {
       if (!it->is_number_integer())
         return fmt::format("{} has attribute {} that is not an accessor index", what, shorten(it.key()));
+      if (!known_attribute(it.key()))
+        return fmt::format("{} has attribute {}, which glTF does not define (an application's own begins with '_')",
+                           what, shorten(it.key()));
+    }
     const long long a = index_of((*prims)[p], "indices");
     if (a == -1) continue;
     if (a < 0 || a >= static_cast<long long>(accessors))
@@ -387,6 +424,7 @@ std::vector<GltfObjectProblem> find_object_problems(const nlohmann::json& j, con
     else if (k == "skins") check_all(key, noun, array, check_skin);
     else if (k == "animations") check_all(key, noun, array, check_animation);
     else if (k == "scenes") check_all(key, noun, array, check_scene);
+    else if (k == "nodes") check_all(key, noun, array, check_node);
     else check_all(key, noun, array, none);
   }
   check_all("lights", "light", lights_of(j), check_light);

@@ -230,6 +230,7 @@ bool replace_unreadable_objects(Json& j, const GltfJsonContext& context, GltfDef
   for (const GltfObjectProblem& p : problems) {
     defects.add(p.object, p.text);
     Json& object = (*object_array(j, p.array))[p.index];
+    if (p.array == "nodes" && object.is_object()) continue;  // tinygltf reads it; its children stay its own
     object = placeholder(p.array, object);
   }
   Json* images = j.contains("images") ? &j["images"] : nullptr;

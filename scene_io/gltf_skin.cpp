@@ -7,6 +7,23 @@
 
 namespace tessera {
 
+namespace {
+
+// True when `node` is `ancestor` or below it (the hierarchy has been checked: a forest).
+bool is_ancestor_or_self(const tinygltf::Model& model, int ancestor, int node) {
+  std::vector<int> stack = {ancestor};
+  while (!stack.empty()) {
+    const int n = stack.back();
+    stack.pop_back();
+    if (n == node) return true;
+    if (n >= 0 && n < static_cast<int>(model.nodes.size()))
+      stack.insert(stack.end(), model.nodes[n].children.begin(), model.nodes[n].children.end());
+  }
+  return false;
+}
+
+}  // namespace
+
 std::string skin_name(const tinygltf::Model& model, std::size_t index) {
   const std::string& name = model.skins[index].name;
   return name.empty() ? fmt::format("skin {}", index) : name;
@@ -25,6 +42,11 @@ Skin read_skin(const tinygltf::Model& model, std::size_t s, const AccessorReader
   if (src.skeleton >= nodes)
     throw SceneLoadError(file, fmt::format("skin {} has skeleton node {}, but the file has {}", s, src.skeleton,
                                            count_of(model.nodes.size(), "node")));
+  if (src.skeleton >= 0)
+    for (int j : src.joints)
+      if (!is_ancestor_or_self(model, src.skeleton, j))
+        throw SceneLoadError(file, fmt::format("skin {} has skeleton node {}, which is not an ancestor of its joint "
+                                               "node {}", s, src.skeleton, j));
   skin.joints = src.joints;
   skin.skeleton = src.skeleton;
   skin.inverse_bind.assign(src.joints.size(), glm::mat4(1.0f));
