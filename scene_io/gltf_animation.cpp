@@ -53,6 +53,10 @@ AnimationChannel read_channel(const tinygltf::Model& model, const tinygltf::Anim
                      count_of(anim.samplers.size(), "sampler")));
   const tinygltf::AnimationSampler& sampler = anim.samplers[src.sampler];
   c.interpolation = parse_interpolation(sampler.interpolation, what, file);
+  const tinygltf::Accessor& input = reader.accessor(sampler.input, what + " input");
+  if (input.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || input.type != TINYGLTF_TYPE_SCALAR)
+    fail(fmt::format("has input accessor {} of {} {}; keyframe times are FLOAT SCALAR", sampler.input,
+                     gltf_component_type_name(input.componentType), gltf_type_name(input.type)));
   c.times = reader.floats(sampler.input, 1, what + " input");
   if (c.times.empty()) fail("has no keyframes");
   for (std::size_t k = 0; k < c.times.size(); ++k)

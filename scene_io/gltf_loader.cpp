@@ -210,6 +210,8 @@ class Converter {
     const auto& scenes = model_.scenes;
     if (scenes.empty()) {
       if (!wanted.empty()) fail(fmt::format("has no scenes, so scene '{}' cannot be chosen", wanted));
+      if (model_.defaultScene >= 0)
+        fail(fmt::format("its default scene is {}, but the file has no scenes", model_.defaultScene));
       return -1;
     }
     int index = model_.defaultScene >= 0 ? model_.defaultScene : 0;
