@@ -122,16 +122,31 @@ Problem check_buffer(const Json& b, std::size_t i, const std::string& base_dir) 
   return std::nullopt;
 }
 
-Problem check_buffer_view(const Json& v, std::size_t i) {
+Problem check_buffer_view(const Json& v, std::size_t i, const Json& j) {
   const long long buffer = index_of(v, "buffer");
   if (buffer < 0) return fmt::format("bufferView {} has no valid buffer index", i);
-  if (index_of(v, "byteLength") < 0) return fmt::format("bufferView {} has no valid byteLength", i);
+  const long long length = index_of(v, "byteLength");
+  if (length < 0) return fmt::format("bufferView {} has no valid byteLength", i);
+  if (length == 0) return fmt::format("bufferView {} has byteLength 0; it must be at least 1", i);
+  const std::size_t buffers = array_size(j, "buffers");
+  if (buffer >= static_cast<long long>(buffers))
+    return fmt::format("bufferView {} refers to buffer {}, but the file has {}", i, buffer, count_of(buffers, "buffer"));
+  // Its span, against the buffer's byteLength (an EXT_meshopt_compression view's data is decoded).
+  const long long offset = std::max(index_of(v, "byteOffset"), 0LL);
+  const long long buffer_length = index_of((*member(j, "buffers"))[buffer], "byteLength");
+  const Json* extensions = member(v, "extensions");
+  if (buffer_length >= 0 && offset + length > buffer_length && !(extensions && member(*extensions, "EXT_meshopt_compression")))
+    return fmt::format("bufferView {} spans bytes {}..{} of buffer {}, which has only {} bytes", i, offset,
+                       offset + length, buffer, buffer_length);
   if (const Json* stride = member(v, "byteStride")) {
     const bool ok = stride->is_number_unsigned() && stride->get<std::uint64_t>() <= 252 &&
                     stride->get<std::uint64_t>() % 4 == 0;
     if (!ok)
       return fmt::format("bufferView {} has byteStride {}; it must be a multiple of 4, at most 252",
                          i, shorten(stride->dump()));
+    if (static_cast<long long>(stride->get<std::uint64_t>()) > length)
+      return fmt::format("bufferView {} has byteStride {}, more than its byteLength {}", i,
+                         stride->get<std::uint64_t>(), length);
   }
   return std::nullopt;
 }
@@ -415,7 +430,7 @@ std::vector<GltfObjectProblem> find_object_problems(const nlohmann::json& j, con
     const Json* array = member(j, key);
     const std::string k = key;
     if (k == "buffers") check_all(key, noun, array, [&](const Json& b, std::size_t i) { return check_buffer(b, i, base_dir); });
-    else if (k == "bufferViews") check_all(key, noun, array, check_buffer_view);
+    else if (k == "bufferViews") check_all(key, noun, array, [&](const Json& v, std::size_t i) { return check_buffer_view(v, i, j); });
     else if (k == "accessors") check_all(key, noun, array, check_accessor);
     else if (k == "meshes") check_all(key, noun, array, [&](const Json& m, std::size_t i) { return check_mesh(m, i, j); });
     else if (k == "materials") check_all(key, noun, array, check_material);
