@@ -104,6 +104,7 @@ Problem check_asset(const Json& j) {
 Problem check_buffer(const Json& b, std::size_t i, const std::string& base_dir) {
   const std::string what = fmt::format("buffer {}", i);
   if (index_of(b, "byteLength") < 0) return what + " has no valid byteLength";
+  if (index_of(b, "byteLength") == 0) return what + " has byteLength 0; it must be at least 1";
   const auto length = static_cast<std::uint64_t>(index_of(b, "byteLength"));
   const Json* uri_json = member(b, "uri");
   if (uri_json && !uri_json->is_string()) return what + " has a uri that is not a string";
