@@ -55,6 +55,12 @@ struct RenderOptions {
   float noise_threshold = 0.0f;  // adaptive sampling: 0 off
   int min_spp = 0;  // adaptive sampling: 0 automatic
   bool denoise = false;
+  bool film_transparent = false;  // alpha = camera-ray coverage, no background in RGB
+  std::string owner, comments;  // the EXR's standard owner and comments attributes
+  std::string command_line;  // the whole command, for the EXR header (main sets it)
+  // The options the command line gave (long names, "--width"; "scene" for the scene file):
+  // --resume takes the others from the file.
+  std::vector<std::string> given;
 };
 
 struct InfoOptions {

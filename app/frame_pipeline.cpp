@@ -11,9 +11,11 @@
 #include "app/auto_background.h"
 #include "app/exit_codes.h"
 #include "app/frame_denoise.h"
+#include "app/frame_sequence.h"
 #include "app/memory_check.h"
 #include "app/profile_outputs.h"
 #include "app/render_setup.h"
+#include "app/resume_options.h"
 #include "renderer/adaptive_sampling.h"
 #include "renderer/tile_scheduler.h"
 
@@ -125,7 +127,7 @@ bool same_environment(const EnvironmentParams& a, const EnvironmentParams& b) {
 
 std::string frame_output_path(const RenderOptions& o) {
   if (!o.output.empty()) return o.output;
-  if (!o.resume.empty()) return o.resume;
+  if (!o.resume.empty()) return finished_sibling(o.resume);
   return std::filesystem::path(o.scene_path).stem().string() + ".exr";
 }
 
@@ -180,6 +182,7 @@ FramePlan plan_frame(const RenderOptions& o, const GltfLoadResult& loaded, const
   plan.cost_layer = std::find(o.aovs.begin(), o.aovs.end(), "cost") != o.aovs.end();
   plan.denoise = o.denoise;
   if (o.denoise) aovs.albedo = aovs.normal = aovs.halves = true;  // what the denoiser reads
+  aovs.coverage = o.film_transparent;
   plan.environment.background = parse_background(o.background, scene, plan.background);
   if (!o.envmap.empty()) plan.background = "envmap " + o.envmap;
   plan.environment.image_path = o.envmap;
@@ -248,7 +251,12 @@ ImageWriteParams frame_write_params(const RenderOptions& o, const FramePlan& pla
     meta.frame = o.frame;
     meta.frames_per_second = static_cast<float>(o.fps);
   }
+  meta.film_transparent = o.film_transparent;
+  meta.owner = o.owner;
+  meta.comments = o.comments;
+  meta.command_line = o.command_line;
   meta.partial = partial;
+  write.resume_options = stored_options_text(o);
   meta.target_spp = settings.spp;
   if (settings.adaptive.on()) {
     meta.noise_threshold = settings.adaptive.threshold;

@@ -19,7 +19,8 @@ namespace tessera {
 // The scene time the options ask for: --frame / --fps, else --time.
 float scene_time(const RenderOptions& o);
 
-// Where -o goes: the option, else the resumed file, else SCENE_NAME.exr in the current directory.
+// Where -o goes: the option, else the resumed file (NAME.exr for NAME.partial.exr), else
+// SCENE_NAME.exr in the current directory.
 std::string frame_output_path(const RenderOptions& o);
 
 // --shutter OPEN,CLOSE (frames) in seconds: {0, 0} without it. Throws UsageError.

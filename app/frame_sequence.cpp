@@ -67,4 +67,16 @@ ExistingFrame existing_frame(const std::string& path) {
   }
 }
 
+std::string partial_sibling(const std::string& path) {
+  const std::filesystem::path p(path);
+  return (p.parent_path() / (p.stem().string() + ".partial" + p.extension().string())).string();
+}
+
+std::string finished_sibling(const std::string& path) {
+  const std::filesystem::path p(path);
+  const std::filesystem::path stem(p.stem());
+  if (stem.extension() != ".partial") return path;
+  return (p.parent_path() / (stem.stem().string() + p.extension().string())).string();
+}
+
 }  // namespace tessera

@@ -30,4 +30,10 @@ enum class ExistingFrame { None, Finished, Partial };
 // partial EXR that tessera can continue with --resume.
 ExistingFrame existing_frame(const std::string& path);
 
+// Where a partial frame goes when `path` holds a finished one, which it never replaces:
+// NAME.EXT -> NAME.partial.EXT beside it. finished_sibling undoes it (other paths unchanged):
+// a render resumed from NAME.partial.exr writes its finished frame to NAME.exr.
+std::string partial_sibling(const std::string& path);
+std::string finished_sibling(const std::string& path);
+
 }  // namespace tessera

@@ -4,6 +4,8 @@
 
 #include <csignal>
 
+#include "renderer/file_output.h"
+
 namespace tessera {
 namespace {
 
@@ -17,6 +19,7 @@ void on_signal(int) {
   if (g_signals++ > 0) {
     static const char kMessage[] = "\ntessera: interrupted again: exiting now\n";
     (void)!::write(STDERR_FILENO, kMessage, sizeof kMessage - 1);
+    remove_temporary_files();  // a write in progress leaves nothing behind
     ::_exit(130);
   }
   static const char kMessage[] =

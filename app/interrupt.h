@@ -1,6 +1,7 @@
-// SIGINT and SIGTERM: the first asks the work in progress to stop (a render finishes its
-// tiles in flight, keeps every finished sample and writes them); the second ends the
-// process at once with exit code 130, leaving any earlier output file untouched.
+// SIGINT and SIGTERM: the first asks the work in progress to stop (a render finishes the
+// work in flight, keeps every finished sample and writes them, never over a finished frame:
+// see app/render_job.h); the second ends the process at once with exit code 130, removing
+// the temporary file of any write in progress and leaving every earlier output untouched.
 // install_interrupt_handlers() runs first thing in main, so a signal that arrives while a
 // scene loads is not lost: the render that follows stops before it starts.
 #pragma once

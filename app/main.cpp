@@ -10,6 +10,7 @@
 #include "app/commands.h"
 #include "app/exit_codes.h"
 #include "app/interrupt.h"
+#include "app/command_line.h"
 #include "renderer/image_input.h"
 #include "renderer/image_output.h"
 #include "renderer/mpi_ranks.h"
@@ -33,6 +34,7 @@ int main(int argc, char** argv) {
   ScalingOptions scaling;
   DenoiseOptions denoise;
   add_render_command(app, render);
+  render.command_line = shell_command_line(argc, argv);  // for the EXR header
   add_info_command(app, info);
   add_bench_command(app, bench);
   add_scaling_command(app, scaling);

@@ -4,10 +4,10 @@
 #include <fstream>
 #include <sstream>
 
-#include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 
 #include "app/exit_codes.h"
+#include "renderer/image_codec.h"
 
 namespace tessera {
 
@@ -34,10 +34,9 @@ std::string gib(std::uint64_t bytes) { return fmt::format("{:.1f} GiB", bytes / 
 
 std::uint64_t environment_texels(const std::string& path) {
   if (path.empty()) return 0;
-  auto in = OIIO::ImageInput::open(path);  // the header only; unreadable files fail later, named
-  if (!in) return 0;
-  const OIIO::ImageSpec& spec = in->spec();
-  return static_cast<std::uint64_t>(spec.width) * spec.height;
+  DecodedImage size;  // the header only; unreadable files fail later, named
+  if (!image_codec().read_size(path, size)) return 0;
+  return static_cast<std::uint64_t>(size.width) * size.height;
 }
 
 }  // namespace
@@ -46,7 +45,7 @@ MemoryEstimate estimate_render_memory(const SceneDescription& scene, int width, 
                                       const std::string& envmap_path, bool adaptive) {
   MemoryEstimate m;
   const std::uint64_t pixels = static_cast<std::uint64_t>(width) * height;
-  const int aov_channels = (aovs.albedo ? 3 : 0) + (aovs.normal ? 3 : 0) + (aovs.depth ? 2 : 0);
+  const int aov_channels = (aovs.albedo ? 3 : 0) + (aovs.normal ? 3 : 0) + (aovs.depth ? 1 : 0) + (aovs.counts_hits() ? 1 : 0);
   m.film = pixels * (kFilmBytesPerPixel + aov_channels * kAovChannelBytes);
   if (aovs.halves || adaptive)
     m.film += pixels * (kOddBytesPerPixel + ((aovs.albedo ? 3 : 0) + (aovs.normal ? 3 : 0)) * kOddAovChannelBytes);

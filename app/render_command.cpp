@@ -11,13 +11,15 @@
 #include "app/frame_sequence.h"
 #include "app/progress.h"
 #include "app/render_job.h"
+#include "app/command_line.h"
+#include "app/resume_options.h"
 #include "renderer/render.h"
 
 namespace tessera {
 
 void add_render_command(CLI::App& app, RenderOptions& o) {
   CLI::App* cmd = app.add_subcommand("render", "Render a glTF 2.0 scene (.gltf or .glb) to an HDR OpenEXR frame.");
-  cmd->add_option("scene", o.scene_path, "The glTF file to render")->required();
+  cmd->add_option("scene", o.scene_path, "The glTF file to render [with --resume: the one the resumed file stores]");
   cmd->add_option("-o,--output", o.output,
                   "Output image; .exr writes float RGBA with AOV layers and render metadata, other "
                   "extensions (.png .jpg .ppm .hdr .tif ...) go through OpenImageIO [default: SCENE_NAME.exr]");
@@ -129,7 +131,15 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
                 "Denoise the finished frame (feature-guided regression on the half buffers, albedo and normal, "
                 "which it turns on): RGB is the denoised image, noisy.R/G/B the beauty as rendered; the preview "
                 "shows the denoised one. Not applied to checkpoints or an interrupted frame");
-  cmd->add_flag("--half", o.half, "Write 16-bit half floats to the EXR instead of 32-bit floats");
+  cmd->add_flag("--half", o.half,
+                "Write the EXR's colour channels (RGBA and colour layers) as 16-bit half floats; Z, N, "
+                "counts and times stay 32-bit");
+  // EXR compositing conventions (docs/usage.md, "The EXR"): alpha, and who made the frame.
+  cmd->add_flag("--film-transparent", o.film_transparent,
+                "EXR alpha = the fraction of each pixel's camera samples that hit geometry, and no background "
+                "in RGB (premultiplied, for comping over a plate); the background still lights the scene");
+  cmd->add_option("--owner", o.owner, "The EXR's standard owner attribute");
+  cmd->add_option("--comments", o.comments, "The EXR's standard comments attribute");
   cmd->add_option("--exposure", o.exposure, "Exposure in stops applied to non-EXR outputs (display formats: before the view transform; .hdr/.tif/.pfm: linear)")
       ->check(CLI::Range(-64.0f, 64.0f))->capture_default_str();
   cmd->add_option("--view-transform", o.view_transform,
@@ -151,9 +161,10 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
                   "many seconds; an EXR checkpoint can be continued with --resume")
       ->check(CLI::Range(0.001, 1e9));
   cmd->add_option("--resume", o.resume,
-                  "Continue a partial or checkpointed EXR written by tessera (same scene file and same options "
-                  "affecting pixels, else refused); the result is the same bit for bit as an uninterrupted render "
-                  "[-o default: this file]");
+                  "Continue a partial or checkpointed EXR written by tessera: alone, with the scene and options "
+                  "the file stores; an option given that contradicts them is refused (--spp may raise the target). "
+                  "The result is the same bit for bit as an uninterrupted render "
+                  "[-o default: this file; NAME.exr for NAME.partial.exr]");
   cmd->add_option("--light-sampling", o.light_sampling,
                   "How emitters and the environment are found: mis (BSDF and light sampling combined), "
                   "bsdf or lights (one strategy alone: noisier, same mean; for verification)")
@@ -175,6 +186,8 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
                   "Adaptive sampling: samples every pixel gets before it may stop [default: as Cycles, "
                   "max(4, ceil(16 / threshold^0.3)): 64 at 0.01]")
       ->check(CLI::Range(4, 1 << 24));
+  // --resume takes every option not given from the file: which ones were given.
+  cmd->parse_complete_callback([cmd, &o] { o.given = given_options(*cmd); });
 }
 
 namespace {
@@ -209,8 +222,9 @@ std::vector<PlannedFrame> plan_frames(const RenderOptions& o) {
 }  // namespace
 
 int run_render(const RenderOptions& options, RankGroup* ranks) {
-  RenderOptions o = options;
+  RenderOptions o = options.resume.empty() ? options : with_stored_options(options);
   o.quiet = o.quiet || (ranks && ranks->rank() > 0);  // rank 0 speaks for the ranks
+  if (o.scene_path.empty()) throw UsageError("scene: the glTF file to render is required (or --resume FILE)");
   if (!o.frames.empty() && !o.resume.empty())
     throw UsageError("--resume: continues one frame; a sequence continues its interrupted frame with --skip-existing");
   std::vector<PlannedFrame> frames = plan_frames(o);

@@ -7,6 +7,7 @@
 
 #include "app/exit_codes.h"
 #include "app/frame_pipeline.h"
+#include "app/frame_sequence.h"
 #include "app/interrupt.h"
 #include "app/profile_outputs.h"
 #include "app/progress.h"
@@ -37,8 +38,9 @@ void print_adaptive_summary(const RenderSettings& settings, const RenderResult& 
              100.0 * total / (pixels * settings.spp), settings.spp);
 }
 
-void print_summary(const RenderOptions& o, const std::string& output, const RenderSettings& settings,
+void print_summary(const RenderOptions& o, const FramePlan& to, const RenderSettings& settings,
                    const RenderResult& result) {
+  const std::string& output = to.output;
   const RenderStats& s = result.stats;
   const int spp = result.image.samples_per_pixel;
   fmt::print(stderr,
@@ -57,7 +59,26 @@ void print_summary(const RenderOptions& o, const std::string& output, const Rend
   if (spp == 0)
     fmt::print(stderr, "tessera: interrupted before every pixel had a sample: {} not written\n", output);
   else
-    fmt::print(stderr, "tessera: {}wrote {}{}\n", why, output, o.preview.empty() ? "" : " and " + o.preview);
+    fmt::print(stderr, "tessera: {}wrote {}{}\n", why, output, to.preview.empty() ? "" : " and " + to.preview);
+}
+
+// Where a partial frame goes (a checkpoint; stopped by a signal or the time limit): -o,
+// unless that holds a finished frame, which it never replaces; then NAME.partial.EXT beside
+// it, and the preview alike.
+FramePlan keeping_finished_frame(const FramePlan& plan) {
+  if (existing_frame(plan.output) != ExistingFrame::Finished) return plan;
+  FramePlan beside = plan;
+  beside.output = partial_sibling(plan.output);
+  if (!plan.preview.empty()) beside.preview = partial_sibling(plan.preview);
+  return beside;
+}
+
+// A finished frame supersedes the partial one a signal or checkpoint left beside it.
+void remove_superseded_partial(const std::string& output, bool quiet) {
+  const std::string partial = partial_sibling(output);
+  if (existing_frame(partial) != ExistingFrame::Partial) return;
+  std::error_code ec;
+  if (std::filesystem::remove(partial, ec) && !quiet) fmt::print(stderr, "tessera: removed {}, now finished\n", partial);
 }
 
 }  // namespace
@@ -81,7 +102,8 @@ FrameJobResult render_frame_job(const RenderOptions& options, const FrameJob& jo
 
   LoadedScene loaded = load_scene(o, *job.document, job.print_warnings && leader);
   FramePlan plan = plan_frame(o, loaded.gltf, job.framing);
-  const double load_seconds = loaded.seconds;
+  // The file is read once for a whole sequence: its first frame counts the reading.
+  const double load_seconds = loaded.seconds + (job.print_warnings ? job.document->read_seconds : 0.0);
   const std::uint64_t triangles = loaded.triangles;
   const BuiltFrame built = build_frame(std::move(loaded), plan, job.scene_cache);
   RenderSettings& settings = plan.settings;
@@ -92,7 +114,8 @@ FrameJobResult render_frame_job(const RenderOptions& options, const FrameJob& jo
   if (!o.resume.empty()) {
     check_resume_settings(o.resume, resumed_settings, resume_text);
     const int min_spp = settings.adaptive.on() ? adaptive_min_spp(settings.adaptive, settings.spp) : 0;
-    resumed = read_resume_film(o.resume, {settings.width, settings.height, settings.aovs, settings.spp, min_spp, settings.window});
+    resumed = read_resume_film(o.resume, {settings.width, settings.height, settings.aovs, settings.spp, min_spp,
+                                          settings.window, stored_spp(resumed_settings)});
   }
   settings.ranks = job.ranks;
   settings.rank_scheduler = o.rank_scheduler == "static" ? RankScheduler::stat : RankScheduler::dynamic;
@@ -105,7 +128,8 @@ FrameJobResult render_frame_job(const RenderOptions& options, const FrameJob& jo
         RenderStats at_checkpoint = stats;
         at_checkpoint.converged_pixels = film.converged_pixels();
         FrameImage image = film.resolve();
-        finish_frame(plan, image, frame_write_params(o, plan, built.camera, at_checkpoint, true), film.state(),
+        const FramePlan to = keeping_finished_frame(plan);
+        finish_frame(to, image, frame_write_params(o, to, built.camera, at_checkpoint, true), film.state(),
                      resume_text, false);
       } catch (const OutputError& e) {
         fmt::print(stderr, "tessera: warning: checkpoint not written: {}\n", e.what());
@@ -130,10 +154,12 @@ FrameJobResult render_frame_job(const RenderOptions& options, const FrameJob& jo
                         fmt::format("{}: {}, {}, {} threads", std::filesystem::path(o.scene_path).filename().string(),
                                     o.scheduler, o.tile_order, result.stats.threads));
   double denoise_seconds = 0.0;
+  const bool partial = samples_left(result.film, settings.spp) > 0;  // done: converged, or at --spp
+  const FramePlan to = partial ? keeping_finished_frame(plan) : plan;
   if (result.image.samples_per_pixel > 0) {
-    const bool partial = samples_left(result.film, settings.spp) > 0;  // done: converged, or at --spp
-    denoise_seconds = finish_frame(plan, result.image, frame_write_params(o, plan, built.camera, result.stats, partial),
+    denoise_seconds = finish_frame(to, result.image, frame_write_params(o, to, built.camera, result.stats, partial),
                                    result.film, resume_text, plan.denoise && !result.stats.cancelled);
+    if (!partial) remove_superseded_partial(to.output, o.quiet);
   }
   if (!o.quiet) {
     const std::string build =
@@ -143,7 +169,10 @@ FrameJobResult render_frame_job(const RenderOptions& options, const FrameJob& jo
     fmt::print(stderr, "tessera: {}: {} triangles; load {:.2f} s, {}, render {:.2f} s{}; background {}\n", o.scene_path,
                triangles, load_seconds, build, result.stats.seconds,
                denoise_seconds > 0.0 ? fmt::format(", denoise {:.2f} s", denoise_seconds) : "", plan.background);
-    print_summary(o, plan.output, settings, result);
+    if (to.output != plan.output && result.image.samples_per_pixel > 0)
+      fmt::print(stderr, "tessera: {} holds a finished frame, kept; the partial frame goes beside it (continue it "
+                 "with --resume {})\n", plan.output, to.output);
+    print_summary(o, to, settings, result);
   }
   return {interrupts.interrupted()};
 }

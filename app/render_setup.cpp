@@ -1,5 +1,7 @@
 #include "app/render_setup.h"
 
+#include <chrono>
+
 #include <algorithm>
 #include <cmath>
 
@@ -56,8 +58,10 @@ float autofocus_distance(const RenderScene& scene, const RenderCamera& camera) {
 }
 
 MeasuredScene load_measured_scene(const std::string& path, int width, const std::string& envmap) {
+  const auto start = std::chrono::steady_clock::now();
   GltfLoadResult loaded = load_gltf(path);
   MeasuredScene m;
+  m.load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   m.width = width;
   const Camera* first = loaded.scene.cameras.empty() ? nullptr : &loaded.scene.cameras[0];
   resolve_resolution(first, m.width, m.height);
@@ -65,7 +69,9 @@ MeasuredScene load_measured_scene(const std::string& path, int width, const std:
   EnvironmentParams env;
   env.background = vec3(choose_auto_background(loaded.scene).black ? 0.0f : 1.0f);
   env.image_path = envmap;
+  const auto build = std::chrono::steady_clock::now();
   m.scene = std::make_unique<RenderScene>(std::move(loaded.scene), env);
+  m.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - build).count();
   m.camera = make_camera(camera, m.width, m.height, {});
   return m;
 }

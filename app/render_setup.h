@@ -35,6 +35,8 @@ struct MeasuredScene {
   std::unique_ptr<RenderScene> scene;
   RenderCamera camera;
   int width = 0, height = 0;
+  double load_seconds = 0.0;  // reading, decoding and converting the file
+  double build_seconds = 0.0;  // the RenderScene: BVH, textures, lights
 };
 MeasuredScene load_measured_scene(const std::string& path, int width, const std::string& envmap = "");
 

@@ -71,6 +71,7 @@ std::string resume_settings(const RenderOptions& o, const RenderSettings& s, con
   if (s.aovs.normal) aovs += "normal,";
   if (s.aovs.depth) aovs += "depth,";
   if (s.aovs.halves) aovs += "halves,";
+  if (s.aovs.coverage) aovs += "film-transparent,";
   if (!aovs.empty()) aovs.pop_back();
   std::string text = fmt::format("format=1\nscene-bytes={}\nscene={}\n", hash_file(o.scene_path), o.scene);
   text += fmt::format("width={}\nheight={}\nspp={}\nmax-bounces={}\nseed={}\nsampler={}\n", s.width, s.height,
@@ -118,7 +119,19 @@ std::string value_of(const std::vector<std::pair<std::string, std::string>>& lin
   return "(nothing)";
 }
 
+// --spp may raise a fixed-count render's target: its samples are the first ones of the longer
+// render's. An adaptive render's convergence checks ran at the old target's waves.
+bool raises_spp(const std::vector<std::pair<std::string, std::string>>& then, const std::string& was,
+                const std::string& now) {
+  return std::stoll(now) > std::stoll(was) && value_of(then, "noise-threshold") == "(nothing)";
+}
+
 }  // namespace
+
+int stored_spp(const std::string& stored) {
+  const std::string spp = value_of(parse_lines(stored), "spp");
+  return spp == "(nothing)" ? 0 : std::stoi(spp);
+}
 
 void check_resume_settings(const std::string& path, const std::string& stored, const std::string& current) {
   const auto then = parse_lines(stored), now_lines = parse_lines(current);
@@ -131,6 +144,7 @@ void check_resume_settings(const std::string& path, const std::string& stored, c
     const std::string& key = line.first;
     const std::string was = value_of(then, key), now = value_of(now_lines, key);
     if (was == now) continue;
+    if (key == "spp" && raises_spp(then, was, now)) continue;
     if (key == "scene-bytes")
       throw UsageError(fmt::format("--resume {}: was rendered from another scene file (its bytes hash to {}, this "
                                    "scene's to {})", path, was, now));

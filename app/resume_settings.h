@@ -21,8 +21,12 @@ std::string resume_settings(const RenderOptions& options, const RenderSettings& 
                             const EnvironmentParams& environment, int variant = -1,
                             const std::string& variant_name = "");
 
-// Throws UsageError naming `path` and the first setting that differs.
+// Throws UsageError naming `path` and the first setting that differs; a higher spp than the
+// stored one is no difference (a fixed-count render continues to the new target).
 void check_resume_settings(const std::string& path, const std::string& stored, const std::string& current);
+
+// The target spp of the render that wrote `stored` (0: none recorded).
+int stored_spp(const std::string& stored);
 
 // A 64-bit FNV-1a hash of a file's bytes, as hex. Throws UsageError when it cannot be read.
 std::string hash_file(const std::string& path);

@@ -7,29 +7,34 @@
 namespace tessera {
 
 Ray RenderCamera::generate_ray(const vec2& film, const vec2& lens, float time) const {
-  // Screen point in camera space on the plane z = -1 (perspective) or z = 0 (orthographic).
+  // Screen point in camera space on the plane z = -1 (perspective) or z = 0 (orthographic);
+  // `dir` stays unnormalised (its z is -1) until it is in world space: camera_to_world is
+  // rigid, so one normalisation there serves both spaces.
   const vec2 ndc(2.0f * film.x - 1.0f, 1.0f - 2.0f * film.y);
-  vec3 origin(0.0f), dir;
-  if (projection == Camera::Projection::Perspective) {
-    dir = glm::normalize(vec3(ndc.x * tan_half_fov_y * aspect, ndc.y * tan_half_fov_y, -1.0f));
-  } else {
+  vec3 origin(0.0f), dir(0.0f, 0.0f, -1.0f);
+  if (projection == Camera::Projection::Perspective)
+    dir = vec3(ndc.x * tan_half_fov_y * aspect, ndc.y * tan_half_fov_y, -1.0f);
+  else
     origin = vec3(ndc.x * half_height * aspect, ndc.y * half_height, 0.0f);
-    dir = vec3(0.0f, 0.0f, -1.0f);
-  }
   if (lens_radius > 0.0f) {
     // Thin lens: every ray through the lens meets the pinhole ray on the focal plane.
-    const vec3 focus = origin + dir * (focus_distance / -dir.z);
+    const vec3 focus = origin + dir * focus_distance;
     origin += vec3(lens_radius * sample_concentric_disk(lens), 0.0f);
-    dir = glm::normalize(focus - origin);
+    dir = focus - origin;
   }
-  // The near and far planes are depths along the view axis; camera_to_world is rigid.
-  const float axial = -dir.z;
+  glm::mat4 moved;
+  const glm::mat4* placed = &camera_to_world;
+  if (!motion.empty()) placed = &(moved = motion.at(time));
+  const glm::mat4& to_world = *placed;
+  const vec3 world_dir = glm::mat3(to_world) * dir;
+  const float length = glm::length(world_dir);
   Ray ray;
+  ray.origin = vec3(to_world * vec4(origin, 1.0f));
+  ray.direction = world_dir / length;
+  // The near and far planes are depths along the view axis.
+  const float axial = -dir.z / length;
   ray.tmin = znear > 0.0f ? znear / axial : 0.0f;
   ray.tmax = zfar > znear && zfar > 0.0f ? zfar / axial : std::numeric_limits<float>::infinity();
-  const glm::mat4 to_world = camera_to_world_at(time);
-  ray.origin = vec3(to_world * vec4(origin, 1.0f));
-  ray.direction = glm::normalize(vec3(to_world * vec4(dir, 0.0f)));
   ray.time = time;
   return ray;
 }

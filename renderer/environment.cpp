@@ -3,9 +3,21 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include <OpenImageIO/imageio.h>
+#include "renderer/image_codec.h"
 
 namespace tessera {
+
+namespace {
+
+DecodedImage decode(const std::string& path) {
+  try {
+    return image_codec().read(path);
+  } catch (const std::runtime_error& e) {
+    throw std::invalid_argument(path + ": " + e.what());
+  }
+}
+
+}  // namespace
 
 Environment::Environment(const EnvironmentParams& params)
     : background_(params.background), scale_(params.scale) {
@@ -14,19 +26,16 @@ Environment::Environment(const EnvironmentParams& params)
   sin_rot_ = std::sin(rot);
   if (params.image_path.empty()) return;
   const std::string& path = params.image_path;
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw std::invalid_argument(path + ": cannot be read as an image (" + OIIO::geterror() + ")");
-  const OIIO::ImageSpec& spec = in->spec();
-  if (spec.width < 2 || spec.height < 1 || spec.nchannels < 1 ||
-      static_cast<double>(spec.width) * spec.height > 1 << 28)
+  DecodedImage img;
+  if (!image_codec().read_size(path, img)) img = decode(path);  // names the reason
+  if (img.width < 2 || img.height < 1 || img.channels < 1 || static_cast<double>(img.width) * img.height > 1 << 28)
     throw std::invalid_argument(path + ": has an unusable size for an environment map");
-  std::vector<float> pixels(static_cast<std::size_t>(spec.width) * spec.height * spec.nchannels);
-  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data()))
-    throw std::invalid_argument(path + ": could not be decoded (" + in->geterror() + ")");
-  width_ = spec.width;
-  height_ = spec.height;
+  img = decode(path);
+  const std::vector<float>& pixels = img.pixels;
+  width_ = img.width;
+  height_ = img.height;
   texels_.resize(static_cast<std::size_t>(width_) * height_);
-  const int nc = spec.nchannels;
+  const int nc = img.channels;
   for (std::size_t i = 0; i < texels_.size(); ++i) {
     vec3 c = nc >= 3 ? vec3(pixels[i * nc], pixels[i * nc + 1], pixels[i * nc + 2]) : vec3(pixels[i * nc]);
     // Negative or non-finite texels would poison every estimate that sees them.

@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -22,6 +23,40 @@ fs::path temporary_sibling(const fs::path& target) {
 }
 
 std::string errno_text() { return std::strerror(errno); }
+
+// The temporary files being written, where a signal handler can read them: a slot is taken
+// (used), filled, then published (ready); the handler unlinks the ready ones. A path too long
+// for a slot, or a ninth write at once, goes unlisted.
+struct TemporarySlot {
+  std::atomic<bool> used{false}, ready{false};
+  char path[4096];
+};
+TemporarySlot g_temporary[8];
+
+class ListedTemporary {
+ public:
+  explicit ListedTemporary(const fs::path& path) {
+    const std::string& text = path.native();
+    if (text.size() >= sizeof(TemporarySlot::path)) return;
+    for (TemporarySlot& s : g_temporary) {
+      if (s.used.exchange(true)) continue;
+      std::memcpy(s.path, text.c_str(), text.size() + 1);
+      s.ready.store(true);
+      slot_ = &s;
+      return;
+    }
+  }
+  ~ListedTemporary() {
+    if (!slot_) return;
+    slot_->ready.store(false);
+    slot_->used.store(false);
+  }
+  ListedTemporary(const ListedTemporary&) = delete;
+  ListedTemporary& operator=(const ListedTemporary&) = delete;
+
+ private:
+  TemporarySlot* slot_ = nullptr;
+};
 
 // Flushes the file to the disk: a delayed write error (a full disk on some file systems)
 // shows here, and a crash after the rename cannot leave an empty file.
@@ -72,6 +107,7 @@ void write_file_atomically(const std::string& path, const std::function<void(con
   check_writable_path(path);
   const fs::path target(path);
   const fs::path tmp = temporary_sibling(target);
+  const ListedTemporary listed(tmp);  // a second signal removes it
   try {
     write(tmp.string());
     sync_file(tmp);
@@ -87,6 +123,11 @@ void write_file_atomically(const std::string& path, const std::function<void(con
     fs::remove(tmp, ec);
     throw OutputError(path + ": cannot be replaced: " + reason);
   }
+}
+
+void remove_temporary_files() {
+  for (const TemporarySlot& s : g_temporary)
+    if (s.ready.load()) ::unlink(s.path);
 }
 
 void write_text_file(const std::string& path, const std::string& text) {

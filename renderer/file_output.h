@@ -19,6 +19,10 @@ void check_writable_path(const std::string& path);
 // from `write` removes the temporary file and is rethrown as OutputError naming `path`.
 void write_file_atomically(const std::string& path, const std::function<void(const std::string&)>& write);
 
+// Removes every temporary file a write_file_atomically in progress has made: for a process
+// about to end at once (a second SIGINT). Async-signal-safe: it only calls unlink(2).
+void remove_temporary_files();
+
 // Writes `size` bytes to `path` (a temporary file, usually) with every write checked and an
 // fsync, so a full disk or an I/O error is an OutputError, never a short file.
 void write_bytes_file(const std::string& path, const void* data, std::size_t size);

@@ -1,6 +1,7 @@
 #include "renderer/film.h"
 
 #include <algorithm>
+#include <limits>
 
 namespace tessera {
 
@@ -14,10 +15,8 @@ FilmState FilmState::empty(int width, int height, AovSelection aovs, bool adapti
   s.samples.assign(n, 0);
   if (aovs.albedo) s.albedo.assign(n, vec3(0.0f));
   if (aovs.normal) s.normal.assign(n, vec3(0.0f));
-  if (aovs.depth) {
-    s.depth.assign(n, 0.0f);
-    s.hits.assign(n, 0);
-  }
+  if (aovs.depth) s.depth.assign(n, 0.0f);
+  if (aovs.counts_hits()) s.hits.assign(n, 0);
   if (aovs.halves || adaptive) {
     s.radiance_odd.assign(n, glm::dvec3(0.0));
     if (aovs.albedo) s.albedo_odd.assign(n, vec3(0.0f));
@@ -39,10 +38,8 @@ void Film::add(int x, int y, const PixelSums& p) {
   s.radiance[i] += p.radiance;
   if (s.aovs.albedo) s.albedo[i] += p.albedo;
   if (s.aovs.normal) s.normal[i] += p.normal;
-  if (s.aovs.depth) {
-    s.depth[i] += p.depth;
-    s.hits[i] += p.hits;
-  }
+  if (s.aovs.depth) s.depth[i] += p.depth;
+  if (s.aovs.counts_hits()) s.hits[i] += p.hits;
   if (s.keeps_odd()) {
     s.radiance_odd[i] += p.radiance_odd;
     if (s.aovs.albedo) s.albedo_odd[i] += p.albedo_odd;
@@ -117,7 +114,13 @@ FrameImage Film::resolve() const {
   if (s.aovs.normal) img.normal = means(s, s.normal, s.normal, Half::all);
   if (s.aovs.depth) {
     img.depth.resize(s.pixel_count());
-    for (std::size_t i = 0; i < s.pixel_count(); ++i) img.depth[i] = s.hits[i] ? s.depth[i] / s.hits[i] : 0.0f;
+    for (std::size_t i = 0; i < s.pixel_count(); ++i)
+      img.depth[i] = s.hits[i] ? s.depth[i] / s.hits[i] : std::numeric_limits<float>::infinity();
+  }
+  if (s.aovs.coverage) {
+    img.alpha.resize(s.pixel_count());
+    for (std::size_t i = 0; i < s.pixel_count(); ++i)
+      img.alpha[i] = s.samples[i] ? static_cast<float>(static_cast<double>(s.hits[i]) / s.samples[i]) : 0.0f;
   }
   if (s.aovs.halves) resolve_halves(s, img);
   if (s.aovs.halves || s.adaptive()) img.pixel_samples = s.samples;

@@ -15,7 +15,11 @@ namespace tessera {
 struct AovSelection {
   bool albedo = false, normal = false, depth = false;
   bool halves = false;  // means of the even- and odd-numbered samples, and each pixel's count
-  bool any() const { return albedo || normal || depth || halves; }
+  // --film-transparent: alpha is the fraction of camera samples that hit something, and a
+  // camera ray that misses adds no background (the RGB is premultiplied by that alpha).
+  bool coverage = false;
+  bool any() const { return albedo || normal || depth || halves || coverage; }
+  bool counts_hits() const { return depth || coverage; }
 };
 
 // A finished frame: linear RGB and the requested outputs, row-major, top row first.
@@ -31,7 +35,12 @@ struct FrameImage {
   int samples_per_pixel = 0;  // the fewest any pixel got
   std::vector<float> rgb;  // 3 per pixel
   std::vector<float> albedo, normal;  // 3 per pixel, when requested
-  std::vector<float> depth;  // 1 per pixel, when requested; 0 where no sample hit
+  // 1 per pixel, when requested: the mean camera-space depth of the samples that hit
+  // something; +infinity where none did (compositors read 0 as "at the camera").
+  std::vector<float> depth;
+  // 1 per pixel with coverage: the fraction of its samples whose camera ray hit something,
+  // the premultiplied RGB's alpha. Empty: A is 1 everywhere.
+  std::vector<float> alpha;
   std::vector<float> cost;  // 1 per pixel, when requested: CPU seconds spent on the pixel's tile
   // With the halves AOV: the means of the even-numbered (s % 2 == 0) and odd-numbered
   // samples, 3 per pixel; albedo and normal ones only when those AOVs are on too.
@@ -51,7 +60,7 @@ struct FilmState {
   std::vector<glm::dvec3> radiance;
   std::vector<vec3> albedo, normal;
   std::vector<float> depth;
-  std::vector<std::uint32_t> samples, hits;
+  std::vector<std::uint32_t> samples, hits;  // hits: with depth or coverage
   // The sums of the odd-numbered samples alone, kept with the halves AOV or adaptive
   // sampling (albedo and normal ones when those AOVs are on): the even half is the total
   // minus these, so a second full set of sums is never needed.

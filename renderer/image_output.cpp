@@ -1,11 +1,8 @@
 #include "renderer/image_output.h"
-#include "renderer/display_transform.h"
-
 
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
-#include <optional>
 #include <thread>
 #include <set>
 
@@ -14,18 +11,16 @@
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
-#include <OpenEXR/ImfIntAttribute.h>
-#include <OpenEXR/ImfFloatAttribute.h>
-#include <OpenEXR/ImfDoubleAttribute.h>
-#include <OpenEXR/ImfMatrixAttribute.h>
+#include <OpenEXR/ImfMultiPartOutputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
-#include <OpenEXR/ImfStringAttribute.h>
+#include <OpenEXR/ImfOutputPart.h>
+#include <OpenEXR/ImfPartType.h>
 #include <OpenEXR/ImfThreading.h>
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
 
+#include "renderer/exr_header.h"
 #include "renderer/exr_layers.h"
 #include "renderer/file_output.h"
+#include "renderer/image_codec.h"
 #include "renderer/resume_layers.h"
 #include "renderer/texture.h"
 
@@ -49,14 +44,6 @@ std::string lower_extension(const std::string& path) {
 
 bool is_float_format(const std::string& ext) {
   return ext == ".hdr" || ext == ".tif" || ext == ".tiff" || ext == ".pfm";
-}
-
-Imath::M44f to_imath(const glm::mat4& m) {
-  // Imath multiplies row vectors (v * M): its [i][j] is glm's column i, row j.
-  Imath::M44f out;
-  for (int i = 0; i < 4; ++i)
-    for (int j = 0; j < 4; ++j) out[i][j] = m[i][j];
-  return out;
 }
 
 // One EXR channel from interleaved floats, converted to half when asked.
@@ -93,76 +80,70 @@ std::vector<ChannelData> exr_channels(const FrameImage& img) {
     const std::vector<float>& pixels = img.*layer.pixels;
     if (!pixels.empty()) add_channels(channels, pixels, static_cast<int>(layer.channels.size()), layer.channels);
   }
-  channels.push_back({"A", std::vector<float>(static_cast<std::size_t>(img.width) * img.height, 1.0f), {}});
+  if (!img.alpha.empty()) add_channels(channels, img.alpha, 1, {"A"});
+  else channels.push_back({"A", std::vector<float>(static_cast<std::size_t>(img.width) * img.height, 1.0f), {}});
   if (!img.pixel_samples.empty())
     add_channels(channels, std::vector<float>(img.pixel_samples.begin(), img.pixel_samples.end()), 1, {kSamplesChannel});
   for (const auto& [name, values] : img.extra_channels) add_channels(channels, values, 1, {name});
   return channels;
 }
 
-void write_exr(const std::string& path, const FrameImage& img, const ImageWriteParams& params) {
-  enable_exr_threads();
-  std::vector<ChannelData> channels = exr_channels(img);
-  const FrameMetadata& m = params.metadata;
-  const Imath::Box2i data_window = exr_data_window(params.window, img.width, img.height);
-  Imf::Header header(exr_display_window(params.window, img.width, img.height), data_window);
-  header.compression() = Imf::ZIP_COMPRESSION;
-  header.insert("samplesPerPixel", Imf::IntAttribute(img.samples_per_pixel));
-  header.insert("renderTimeSeconds", Imf::DoubleAttribute(m.render_seconds));
-  header.insert("seed", Imf::IntAttribute(static_cast<int>(m.seed)));
-  if (!m.sampler.empty()) header.insert("sampler", Imf::StringAttribute(m.sampler));
-  if (!m.pixel_filter.empty()) header.insert("pixelFilter", Imf::StringAttribute(m.pixel_filter));
-  header.insert("threads", Imf::IntAttribute(m.threads));
-  header.insert("tileSize", Imf::IntAttribute(m.tile_size));
-  header.insert("maxBounces", Imf::IntAttribute(m.max_bounces));
-  header.insert("droppedSamples", Imf::DoubleAttribute(static_cast<double>(m.dropped_samples)));
-  header.insert("worldToCamera", Imf::M44fAttribute(to_imath(m.world_to_camera)));
-  header.insert("worldToNDC", Imf::M44fAttribute(to_imath(m.world_to_ndc)));
-  header.insert("partial", Imf::IntAttribute(m.partial ? 1 : 0));
-  if (m.target_spp > 0) header.insert("targetSamplesPerPixel", Imf::IntAttribute(m.target_spp));
-  if (m.noise_threshold > 0.0f) {
-    header.insert("noiseThreshold", Imf::FloatAttribute(m.noise_threshold));
-    header.insert("minSamplesPerPixel", Imf::IntAttribute(m.min_spp));
-    header.insert("convergedPixels", Imf::DoubleAttribute(static_cast<double>(m.converged_pixels)));
-  }
-  if (m.denoised) header.insert("denoised", Imf::IntAttribute(1));
-  header.insert("software", Imf::StringAttribute("tessera " + tessera_version()));
-  header.insert("tesseraVersion", Imf::StringAttribute(tessera_version()));
-  if (!m.scene_path.empty()) header.insert("scene", Imf::StringAttribute(m.scene_path));
-  if (!m.camera_name.empty()) header.insert("camera", Imf::StringAttribute(m.camera_name));
-  if (!m.material_variant.empty()) header.insert("materialVariant", Imf::StringAttribute(m.material_variant));
-  if (m.animated) header.insert("sceneTime", Imf::FloatAttribute(m.scene_time));
-  if (m.shutter_open < m.shutter_close) {  // motion blur: what the samples' times spanned
-    header.insert("shutterOpen", Imf::FloatAttribute(m.shutter_open));
-    header.insert("shutterClose", Imf::FloatAttribute(m.shutter_close));
-  }
-  if (m.frame >= 0) {
-    header.insert("frame", Imf::IntAttribute(m.frame));
-    header.insert("framesPerSecond", Imf::FloatAttribute(m.frames_per_second));
-  }
-  if (!params.header_from.empty()) copy_attributes(params.header_from, header);
+// A colour channel (R, G, B, A, or a layer's) may be stored as half with --half; depth,
+// normals, counts and times keep 32-bit floats, which half would round (Z to 3 digits).
+bool is_colour_channel(const std::string& name) {
+  const std::string last = name.substr(name.rfind('.') + 1);
+  return last == "R" || last == "G" || last == "B" || last == "A";
+}
 
-  const Imf::PixelType type = params.half ? Imf::HALF : Imf::FLOAT;
-  Imf::FrameBuffer fb;
+void insert_channels(std::vector<ChannelData>& channels, bool half, const Imath::Box2i& data_window, int width,
+                     Imf::Header& header, Imf::FrameBuffer& fb) {
   for (ChannelData& ch : channels) {
+    const Imf::PixelType type = half && is_colour_channel(ch.name) ? Imf::HALF : Imf::FLOAT;
     header.channels().insert(ch.name, Imf::Channel(type));
-    char* base;
-    std::size_t size;
-    if (params.half) {
+    char* base = reinterpret_cast<char*>(ch.f.data());
+    std::size_t size = sizeof(float);
+    if (type == Imf::HALF) {
       ch.h.assign(ch.f.begin(), ch.f.end());
       base = reinterpret_cast<char*>(ch.h.data());
       size = sizeof(Imath::half);
-    } else {
-      base = reinterpret_cast<char*>(ch.f.data());
-      size = sizeof(float);
     }
-    fb.insert(ch.name, Imf::Slice::Make(type, base, data_window, size, size * img.width));
+    fb.insert(ch.name, Imf::Slice::Make(type, base, data_window, size, size * width));
   }
-  std::optional<ResumeLayers> resume;
-  if (params.resume_film) {
-    resume.emplace(*params.resume_film, params.resume_settings);
-    resume->insert_into(header, fb, data_window);
-  }
+}
+
+// A resumable frame is a two-part file: the frame as compositors read it, then the film's
+// exact sums in a part of their own, which layer lists built from the first part never show.
+void write_resumable_exr(const std::string& path, Imf::Header& header, const Imf::FrameBuffer& fb, int height,
+                         const ImageWriteParams& params) {
+  const Imath::Box2i data_window = header.dataWindow();
+  Imf::Header resume_header = header;  // the same windows and shared attributes, no channels
+  resume_header.channels() = Imf::ChannelList();
+  header.setName("rgba");
+  header.setType(Imf::SCANLINEIMAGE);
+  resume_header.setName(kResumePartName);
+  resume_header.setType(Imf::SCANLINEIMAGE);
+  Imf::FrameBuffer resume_fb;
+  ResumeLayers resume(*params.resume_film, params.resume_settings, params.resume_options);
+  resume.insert_into(resume_header, resume_fb, data_window);
+  Imf::MultiPartOutputFile file(path.c_str(), std::vector<Imf::Header>{header, resume_header}.data(), 2);
+  Imf::OutputPart frame(file, 0), film(file, 1);
+  frame.setFrameBuffer(fb);
+  frame.writePixels(height);
+  film.setFrameBuffer(resume_fb);
+  film.writePixels(height);
+}
+
+void write_exr(const std::string& path, const FrameImage& img, const ImageWriteParams& params) {
+  enable_exr_threads();
+  std::vector<ChannelData> channels = exr_channels(img);
+  const Imath::Box2i data_window = exr_data_window(params.window, img.width, img.height);
+  Imf::Header header(exr_display_window(params.window, img.width, img.height), data_window);
+  header.compression() = Imf::ZIP_COMPRESSION;
+  insert_frame_metadata(header, params.metadata, img.samples_per_pixel);
+  if (!params.header_from.empty()) copy_attributes(params.header_from, header);
+  Imf::FrameBuffer fb;
+  insert_channels(channels, params.half, data_window, img.width, header, fb);
+  if (params.resume_film) return write_resumable_exr(path, header, fb, img.height, params);
   Imf::OutputFile file(path.c_str(), header);
   file.setFrameBuffer(fb);
   file.writePixels(img.height);
@@ -172,26 +153,22 @@ void write_exr(const std::string& path, const FrameImage& img, const ImageWriteP
 // and says nothing; JPEG's library exits the process on a full disk), so the image is encoded
 // into memory and written by write_bytes_file, which checks every write and the fsync.
 // A writer that went straight to the file: read it back, so a truncated file is an error.
-void verify_readable(const std::string& path) {
-  auto in = OIIO::ImageInput::open(path);
-  std::vector<float> pixels;
-  if (in) pixels.resize(static_cast<std::size_t>(in->spec().image_pixels()) * in->spec().nchannels);
-  if (!in || !in->read_image(0, 0, 0, -1, OIIO::TypeDesc::FLOAT, pixels.data()))
+void write_oiio_pixels(const std::string& path, int width, int height, PixelType type, const void* pixels) {
+  EncodedImage encoded;
+  try {
+    encoded = image_codec().encode(path, width, height, type, pixels, "tessera " + tessera_version());
+  } catch (const std::runtime_error& e) {
+    throw OutputError(path + ": " + e.what());
+  }
+  if (encoded.in_memory) {
+    write_bytes_file(path, encoded.bytes.data(), encoded.bytes.size());
+    return;
+  }
+  try {
+    image_codec().read(path);
+  } catch (const std::runtime_error&) {
     throw OutputError(path + ": the written file does not read back (is the disk full?)");
-}
-
-void write_oiio_pixels(const std::string& path, int width, int height, OIIO::TypeDesc type, const void* pixels) {
-  auto out = OIIO::ImageOutput::create(path);
-  if (!out) throw OutputError(path + ": no image writer for this format (" + OIIO::geterror() + ")");
-  OIIO::ImageSpec spec(width, height, 3, type);
-  spec.attribute("Software", "tessera " + tessera_version());
-  std::vector<unsigned char> encoded;
-  OIIO::Filesystem::IOVecOutput memory(encoded);
-  const bool in_memory = out->supports("ioproxy") && out->set_ioproxy(&memory);
-  if (!out->open(path, spec)) throw OutputError(path + ": " + out->geterror());
-  if (!out->write_image(type, pixels) || !out->close()) throw OutputError(path + ": " + out->geterror());
-  if (in_memory) write_bytes_file(path, encoded.data(), encoded.size());
-  else verify_readable(path);
+  }
 }
 
 void write_oiio(const std::string& path, const FrameImage& img, const ImageWriteParams& params) {
@@ -199,10 +176,10 @@ void write_oiio(const std::string& path, const FrameImage& img, const ImageWrite
     const float scale = std::exp2(params.exposure);
     std::vector<float> scaled(img.rgb);
     for (float& v : scaled) v *= scale;
-    write_oiio_pixels(path, img.width, img.height, OIIO::TypeDesc::FLOAT, scaled.data());
+    write_oiio_pixels(path, img.width, img.height, PixelType::float32, scaled.data());
   } else {
     const std::vector<std::uint8_t> rgb = to_display_rgb8(img.rgb, params.exposure, params.display);
-    write_oiio_pixels(path, img.width, img.height, OIIO::TypeDesc::UINT8, rgb.data());
+    write_oiio_pixels(path, img.width, img.height, PixelType::uint8, rgb.data());
   }
 }
 
@@ -222,8 +199,7 @@ void check_output_path(const std::string& path) {
   check_writable_path(path);  // first: "-o /dev/full" is a device, whatever its extension
   const std::string ext = lower_extension(path);
   if (ext != ".exr") {
-    auto writer = OIIO::ImageOutput::create(path);
-    if (!writer) throw OutputPathError(path + ": unknown image format '" + ext + "' (use .exr, .png, .jpg, .ppm, .hdr, .tif, ...)");
+    if (!image_codec().has_writer(path)) throw OutputPathError(path + ": unknown image format '" + ext + "' (use .exr, .png, .jpg, .ppm, .hdr, .tif, ...)");
   }
 }
 
@@ -238,7 +214,7 @@ void write_image(const std::string& path, const FrameImage& image, const ImageWr
 void write_rgb8_image(const std::string& path, int width, int height, const std::vector<std::uint8_t>& rgb) {
   check_output_path(path);
   write_file_atomically(path, [&](const std::string& tmp) {
-    write_oiio_pixels(tmp, width, height, OIIO::TypeDesc::UINT8, rgb.data());
+    write_oiio_pixels(tmp, width, height, PixelType::uint8, rgb.data());
   });
 }
 

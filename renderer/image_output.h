@@ -49,18 +49,22 @@ struct FrameMetadata {
   int min_spp = 0;  // adaptive sampling: the minimum in effect
   std::uint64_t converged_pixels = 0;  // adaptive sampling: pixels stopped before target_spp
   bool denoised = false;  // RGB is denoised; noisy.R/G/B holds the beauty as rendered
+  bool film_transparent = false;  // A is the camera rays' coverage; RGB has no background
+  std::string owner, comments;  // OpenEXR's standard attributes (empty: not written)
+  std::string command_line;  // the tessera command that made the frame
 };
 
 struct ImageWriteParams {
-  bool half = false;  // EXR: 16-bit half floats instead of 32-bit floats
+  bool half = false;  // EXR: 16-bit half floats for the colour channels (Z, N and counts stay 32-bit)
   FrameWindow window;  // EXR: where the image lies in its frame (data and display windows)
   float exposure = 0.0f;  // non-EXR formats: stops applied (before the view of display formats)
   DisplayParams display;  // display formats (8-bit): the view from scene-linear to the display
   FrameMetadata metadata;  // EXR header
-  // EXR: also store the film losslessly with these settings lines, so that --resume can
-  // continue it (see renderer/resume_layers.h). Null: a plain frame.
+  // EXR: also store the film losslessly with these settings lines, in a second part of the
+  // file, so that --resume can continue it (see renderer/resume_layers.h). Null: a plain frame.
   const FilmState* resume_film = nullptr;
   std::string resume_settings;
+  std::string resume_options;  // the options it was rendered with, for `--resume FILE` alone
   // EXR: also copy the header attributes of this EXR (not its layout: channels, windows,
   // compression), over tessera's own. A denoised frame keeps its render's metadata.
   std::string header_from;

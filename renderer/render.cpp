@@ -53,10 +53,12 @@ void render_tile(const RenderScene& scene, const RenderCamera& camera, const Pix
   params.max_bounces = settings.max_bounces;
   params.light_sampling = settings.light_sampling;
   params.clamp = settings.clamp;
+  params.transparent_background = settings.aovs.coverage;
   const vec3 forward = camera.forward();
   // Motion blur: each camera sample draws its time, after the film and lens positions. A
   // scene where nothing moves draws none, so its numbers and image stay what they were.
   const bool camera_moves = camera.moves(), timed = scene.moves() || camera_moves;
+  const bool has_lens = camera.lens_radius > 0.0f;  // a pinhole draws no lens position
   const FrameWindow& window = settings.window;
   const float inv_w = 1.0f / (window.cropped() ? window.full_width : settings.width);
   const float inv_h = 1.0f / (window.cropped() ? window.full_height : settings.height);
@@ -69,7 +71,7 @@ void render_tile(const RenderScene& scene, const RenderCamera& camera, const Pix
       for (int s = begin; s < wave.end; ++s) {
         Sampler rng(settings.sampler, fx, fy, s, settings.seed);
         const vec2 at = filter.sample(rng.next2());
-        const vec2 lens = rng.next2();
+        const vec2 lens = has_lens ? rng.next2() : vec2(0.5f);
         const float time = timed ? rng.next() : 0.0f;
         const Ray ray = camera.generate_ray({(fx + at.x) * inv_w, (fy + at.y) * inv_h}, lens, time);
         if (!is_finite(ray.origin) || !is_finite(ray.direction)) {  // a degenerate camera: Embree

@@ -10,7 +10,8 @@
 #include <OpenEXR/ImfDoubleAttribute.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
-#include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfInputPart.h>
+#include <OpenEXR/ImfMultiPartInputFile.h>
 #include <OpenEXR/ImfIntAttribute.h>
 #include <OpenEXR/ImfStringAttribute.h>
 
@@ -61,8 +62,8 @@ void add_float_sums(ResumeLayers::Buffers& b, const std::vector<vec3>& sums, con
 
 }  // namespace
 
-ResumeLayers::ResumeLayers(const FilmState& film, std::string settings)
-    : buffers_(std::make_unique<Buffers>()), settings_(std::move(settings)) {
+ResumeLayers::ResumeLayers(const FilmState& film, std::string settings, std::string options)
+    : buffers_(std::make_unique<Buffers>()), settings_(std::move(settings)), options_(std::move(options)) {
   Buffers& b = *buffers_;
   b.width = film.width;
   b.checked_at = film.checked_at;
@@ -70,10 +71,8 @@ ResumeLayers::ResumeLayers(const FilmState& film, std::string settings)
   add_double_sums(b, film.radiance, "tessera.sum.");
   if (film.aovs.albedo) add_float_sums(b, film.albedo, kRgb, "tessera.albedo.");
   if (film.aovs.normal) add_float_sums(b, film.normal, kXyz, "tessera.normal.");
-  if (film.aovs.depth) {
-    b.floats.push_back({"tessera.depth", film.depth});
-    b.uints.push_back({"tessera.hits", film.hits});
-  }
+  if (film.aovs.depth) b.floats.push_back({"tessera.depth", film.depth});
+  if (film.aovs.counts_hits()) b.uints.push_back({"tessera.hits", film.hits});
   if (film.keeps_odd()) {
     add_double_sums(b, film.radiance_odd, "tessera.odd.");
     if (film.aovs.albedo) add_float_sums(b, film.albedo_odd, kRgb, "tessera.odd.albedo.");
@@ -127,6 +126,7 @@ void ResumeLayers::insert_into(Imf::Header& header, Imf::FrameBuffer& fb, const 
   }
   header.insert("tesseraResume", Imf::StringAttribute(settings_));
   header.insert("tesseraFingerprint", Imf::StringAttribute(fnv1a_hex(settings_)));
+  if (!options_.empty()) header.insert("tesseraOptions", Imf::StringAttribute(options_));
   if (b.adaptive) header.insert("tesseraCheckedAt", Imf::IntAttribute(static_cast<int>(b.checked_at)));
 }
 
@@ -169,7 +169,7 @@ class LayerReader {
     vec3s_.push_back(out);
   }
   // Reads the pixels and assembles the doubles and vec3 sums in the order they were asked for.
-  void read(Imf::InputFile& file) {
+  void read(Imf::InputPart& file) {
     file.setFrameBuffer(fb_);
     file.readPixels(window_.min.y, window_.max.y);
     for (std::size_t k = 0; k < doubles_.size(); ++k)
@@ -205,16 +205,14 @@ class LayerReader {
   std::vector<std::vector<vec3>*> vec3s_;
 };
 
-void read_layers(Imf::InputFile& file, FilmState& film, const std::string& path) {
+void read_layers(Imf::InputPart& file, FilmState& film, const std::string& path) {
   LayerReader r(file.header(), film, path);
   r.uints("tessera.samples", film.samples.data());
   r.doubles("tessera.sum.", &film.radiance);
   if (film.aovs.albedo) r.vec3s(kRgb, "tessera.albedo.", &film.albedo);
   if (film.aovs.normal) r.vec3s(kXyz, "tessera.normal.", &film.normal);
-  if (film.aovs.depth) {
-    r.floats("tessera.depth", film.depth.data());
-    r.uints("tessera.hits", film.hits.data());
-  }
+  if (film.aovs.depth) r.floats("tessera.depth", film.depth.data());
+  if (film.aovs.counts_hits()) r.uints("tessera.hits", film.hits.data());
   if (film.keeps_odd()) {
     r.doubles("tessera.odd.", &film.radiance_odd);
     if (film.aovs.albedo) r.vec3s(kRgb, "tessera.odd.albedo.", &film.albedo_odd);
@@ -231,7 +229,7 @@ void read_layers(Imf::InputFile& file, FilmState& film, const std::string& path)
 
 // Every count must be where a wave ends: what a render stopped between tiles leaves.
 void check_counts(const FilmState& film, const ResumeFilmSpec& spec, const std::string& path) {
-  const int spp = spec.spp;
+  const int spp = spec.written_spp > 0 ? spec.written_spp : spec.spp;  // whose waves the counts end
   std::vector<bool> wave_end(static_cast<std::size_t>(spp) + 1, false);
   wave_end[0] = true;
   const std::vector<SampleWave> waves =
@@ -257,31 +255,50 @@ auto rethrow_as_resume_error(const std::string& path, F&& body) {
   }
 }
 
+// The part holding the resume data: the second of a two-part file, or the only part of a
+// partial written before that layout. -1: none.
+int resume_part(const Imf::MultiPartInputFile& file) {
+  for (int i = 0; i < file.parts(); ++i)
+    if (file.header(i).findTypedAttribute<Imf::StringAttribute>("tesseraResume")) return i;
+  return -1;
+}
+
 }  // namespace
 
 std::string read_resume_settings(const std::string& path) {
   return rethrow_as_resume_error(path, [&] {
-    Imf::InputFile file(path.c_str());
-    const Imf::Header& h = file.header();
-    const auto* settings = h.findTypedAttribute<Imf::StringAttribute>("tesseraResume");
-    if (settings) return settings->value();
-    const auto* partial = h.findTypedAttribute<Imf::IntAttribute>("partial");
+    Imf::MultiPartInputFile file(path.c_str());
+    const int part = resume_part(file);
+    if (part >= 0) return file.header(part).typedAttribute<Imf::StringAttribute>("tesseraResume").value();
+    const auto* partial = file.header(0).findTypedAttribute<Imf::IntAttribute>("partial");
     if (partial && partial->value() == 0) throw ResumeError(path + ": is a finished render: nothing to resume");
     throw ResumeError(path + ": has no resume data (only an EXR that tessera wrote partial, or as a checkpoint, has)");
   });
 }
 
+std::string read_resume_options(const std::string& path) {
+  read_resume_settings(path);  // a resumable file, or its error
+  return rethrow_as_resume_error(path, [&] {
+    Imf::MultiPartInputFile file(path.c_str());
+    const auto* options = file.header(resume_part(file)).findTypedAttribute<Imf::StringAttribute>("tesseraOptions");
+    return options ? options->value() : std::string();
+  });
+}
+
 FilmState read_resume_film(const std::string& path, const ResumeFilmSpec& spec) {
   return rethrow_as_resume_error(path, [&] {
-    Imf::InputFile file(path.c_str());
-    const Imf::Header& h = file.header();
+    Imf::MultiPartInputFile file(path.c_str());
+    const int part_index = resume_part(file);
+    if (part_index < 0) throw ResumeError(path + ": has no resume data");
+    Imf::InputPart part(file, part_index);
+    const Imf::Header& h = part.header();
     const Imath::Box2i dw = h.dataWindow();
     if (dw != exr_data_window(spec.window, spec.width, spec.height))
       throw ResumeError(path + ": its pixels are not the " + std::to_string(spec.width) + "x" +
                         std::to_string(spec.height) + " image at (" + std::to_string(spec.window.x) + ", " +
                         std::to_string(spec.window.y) + ") this render makes");
     FilmState film = FilmState::empty(spec.width, spec.height, spec.aovs, spec.adaptive_min_spp > 0);
-    read_layers(file, film, path);
+    read_layers(part, film, path);
     check_counts(film, spec, path);
     if (const auto* dropped = h.findTypedAttribute<Imf::DoubleAttribute>("droppedSamples"))
       film.dropped = static_cast<std::uint64_t>(dropped->value());

@@ -2,9 +2,10 @@
 // index, draw, seed) alone, never of the thread, tile or order of work: the image is the same
 // bit for bit however it is split, and a resumed render continues exactly.
 //
-// The integrator asks for draws in a fixed order (camera jitter, lens, the shutter time when
-// something moves, then per bounce: light selection and point, environment direction, lobe
-// and direction, roulette), each draw 1, 2 or 3 numbers meant to be used together.
+// The integrator asks for draws in a fixed order (camera jitter, the lens position with an
+// aperture, the shutter time when something moves, then per bounce: light selection and
+// point, environment direction, lobe and direction, roulette), each draw 1, 2 or 3 numbers
+// meant to be used together.
 //   sobol:       each draw is a point of a padded, Owen-scrambled Sobol sequence (pbrt-v4's
 //                PaddedSobolSampler, Burley 2020): over a pixel's samples, every 2D draw is a
 //                (0,2)-sequence, so each of its elementary intervals holds one point per 2^k
@@ -43,6 +44,7 @@ class Sampler {
   Sampler(SamplerKind kind, std::uint32_t px, std::uint32_t py, std::uint32_t sample, std::uint32_t seed)
       : pixel_key_(mix64(mix64((std::uint64_t(seed) << 32) | kind_tag(kind)) ^ ((std::uint64_t(py) << 32) | px))),
         sample_(sample),
+        reversed_sample_(reverse_bits(sample)),
         kind_(kind) {}
 
   float next() { return draw(1)[0]; }
@@ -69,15 +71,18 @@ class Sampler {
       }
       return v;
     }
-    // The shuffled index stays bit-reversed: scrambled_sobol takes it so.
-    const std::uint32_t index = laine_karras(reverse_bits(sample_), static_cast<std::uint32_t>(key));
-    for (int d = 0; d < n; ++d)
-      v[d] = bits_to_unit_float(scrambled_sobol(index, d, static_cast<std::uint32_t>(mix64(key ^ (d + 1)))));
+    // The shuffled index stays bit-reversed: scrambled_sobol_float takes it so. The scrambles'
+    // seeds are the key's two halves and, for a second and third number, one more hash of it.
+    const std::uint32_t index = laine_karras(reversed_sample_, static_cast<std::uint32_t>(key));
+    const std::uint64_t more = n > 1 ? mix64(key ^ 0x2545f4914f6cdd1dULL) : 0;
+    const std::uint32_t seeds[3] = {static_cast<std::uint32_t>(key >> 32), static_cast<std::uint32_t>(more),
+                                    static_cast<std::uint32_t>(more >> 32)};
+    for (int d = 0; d < n; ++d) v[d] = scrambled_sobol_float(index, d, seeds[d]);
     return v;
   }
 
   std::uint64_t pixel_key_;
-  std::uint32_t sample_;
+  std::uint32_t sample_, reversed_sample_;
   std::uint32_t draws_ = 0;
   SamplerKind kind_;
 };

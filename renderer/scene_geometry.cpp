@@ -478,7 +478,7 @@ std::vector<SceneGeometry::PlacedPrimitive> SceneGeometry::placed_primitives() c
   return out;
 }
 
-bool SceneGeometry::intersect(const Ray& ray, HitRecord& hit) const {
+bool SceneGeometry::intersect(const Ray& ray, HitRecord& hit, vec3* geometric_normal) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit rh;
@@ -499,6 +499,7 @@ bool SceneGeometry::intersect(const Ray& ray, HitRecord& hit) const {
   rtcIntersect1(top_, &context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
   hit = {rh.ray.tfar, rh.hit.u, rh.hit.v, rh.hit.geomID, rh.hit.primID, rh.hit.instID[0], rh.ray.time};
+  if (geometric_normal) *geometric_normal = vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
   return true;
 }
 

@@ -69,7 +69,9 @@ class SceneGeometry {
   SceneGeometry(const SceneGeometry&) = delete;
   SceneGeometry& operator=(const SceneGeometry&) = delete;
 
-  bool intersect(const Ray& ray, HitRecord& hit) const;
+  // With `geometric_normal`, also Embree's unnormalised geometric normal (in the hit
+  // instance's own space: what a traversal-only pass needs, not shading).
+  bool intersect(const Ray& ray, HitRecord& hit, vec3* geometric_normal = nullptr) const;
   // What reaches origin from origin + tmax direction at `time`: 0 behind an opaque surface,
   // else the product of what the surfaces between let through (1 - alpha of a BLEND
   // surface, the straight-through transmittance of a thin transmissive one, from `thin`).

@@ -3,6 +3,9 @@
 #include <array>
 #include <cstring>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 namespace tessera {
 
 float srgb_to_linear(float v) {
@@ -67,21 +70,27 @@ TextureImage make_texture_image(const Image& image, ColorEncoding encoding) {
     if (nc == 2) return std::array<T, 4>{g, g, g, value(p * nc + 1)};
     return std::array<T, 4>{g, value(p * nc + 1), value(p * nc + 2), nc == 4 ? value(p * nc + 3) : one};
   };
+  // Blocks of texels in parallel: a 2048^2 texture is 4 M of them.
+  auto each_texel = [n](auto&& convert) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1 << 16), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t p = r.begin(); p != r.end(); ++p) convert(p);
+    });
+  };
   if (image.bits_per_channel == 8) {
     out.texels8.resize(n);
     auto byte = [&](std::size_t i) { return image.pixels[i]; };
-    for (std::size_t p = 0; p < n; ++p) out.texels8[p] = expand(byte, p, std::uint8_t{255});
+    each_texel([&](std::size_t p) { out.texels8[p] = expand(byte, p, std::uint8_t{255}); });
     return out;
   }
   out.texels_float.resize(n);
   auto value = [&](std::size_t i) { return channel(image, i); };
-  for (std::size_t p = 0; p < n; ++p) {
+  each_texel([&](std::size_t p) {
     const std::array<float, 4> t = expand(value, p, 1.0f);
     vec4 c(t[0], t[1], t[2], t[3]);
     if (encoding == ColorEncoding::SRGB)
       for (int k = 0; k < 3; ++k) c[k] = srgb_to_linear(c[k]);
     out.texels_float[p] = c;
-  }
+  });
   return out;
 }
 

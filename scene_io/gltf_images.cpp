@@ -3,6 +3,7 @@
 #include <cstring>
 
 #include <fmt/format.h>
+#include <tbb/parallel_for.h>
 #include <webp/decode.h>
 
 #include "scene_io/load_error.h"
@@ -49,17 +50,30 @@ bool load_gltf_image(tinygltf::Image* image, const int index, std::string* err, 
     image->mimeType = "image/ktx2";
     return true;
   }
-  std::string ignored;
-  if (is_webp(bytes, size) ? decode_webp(image, bytes, size)
-                           : tinygltf::LoadImageData(image, index, &ignored, warn, width, height, bytes, size, nullptr))
-    return true;
-  // A defect of this image alone: refused only when a texture the scene uses shows it.
-  static_cast<ImageLoadContext*>(user)->undecodable.emplace_back(
-      index, fmt::format("image {} ({}) could not be decoded: it is not a PNG, JPEG or WebP image", index,
-                         gltf_image_source(*image)));
-  image->mimeType = kUndecodableImage;
-  (void)err;
+  static_cast<ImageLoadContext*>(user)->pending.push_back({index, std::vector<unsigned char>(bytes, bytes + size)});
+  (void)err, (void)warn, (void)width, (void)height;
   return true;
+}
+
+void decode_pending_images(tinygltf::Model& model, ImageLoadContext& ctx) {
+  std::vector<std::string> problems(ctx.pending.size());
+  tbb::parallel_for(std::size_t{0}, ctx.pending.size(), [&](std::size_t k) {
+    const ImageLoadContext::Pending& p = ctx.pending[k];
+    tinygltf::Image* image = &model.images[p.index];
+    const unsigned char* bytes = p.bytes.data();
+    const int size = static_cast<int>(p.bytes.size());
+    std::string ignored, warn;
+    if (is_webp(bytes, size) ? decode_webp(image, bytes, size)
+                             : tinygltf::LoadImageData(image, p.index, &ignored, &warn, 0, 0, bytes, size, nullptr))
+      return;
+    // A defect of this image alone: refused only when a texture the scene uses shows it.
+    problems[k] = fmt::format("image {} ({}) could not be decoded: it is not a PNG, JPEG or WebP image", p.index,
+                              gltf_image_source(*image));
+    image->mimeType = kUndecodableImage;
+  });
+  for (std::size_t k = 0; k < problems.size(); ++k)
+    if (!problems[k].empty()) ctx.undecodable.emplace_back(ctx.pending[k].index, problems[k]);
+  ctx.pending.clear();
 }
 
 std::string gltf_image_source(const tinygltf::Image& image) {

@@ -15,14 +15,26 @@ namespace tessera {
 // The mimeType of an image tessera cannot decode: left empty, refused when a texture shows it.
 inline constexpr const char* kUndecodableImage = "tessera/undecodable";
 
-// What the image callback saw: the images it could not decode, by index.
+// What the image callback saw: the encoded bytes of the images to decode (by index, decoded
+// afterwards and in parallel by decode_pending_images), and the images that could not be.
 struct ImageLoadContext {
+  struct Pending {
+    int index;
+    std::vector<unsigned char> bytes;
+  };
+  std::vector<Pending> pending;
   std::vector<std::pair<int, std::string>> undecodable;
 };
 
-// tinygltf's LoadImageDataFunction; `user` is an ImageLoadContext.
+// tinygltf's LoadImageDataFunction; `user` is an ImageLoadContext. It keeps the bytes for
+// decode_pending_images: tinygltf calls it image after image, and decoding a model's
+// textures one by one was most of its load time (DamagedHelmet: five 2048^2 images).
 bool load_gltf_image(tinygltf::Image* image, int index, std::string* err, std::string* warn, int width, int height,
                      const unsigned char* bytes, int size, void* user);
+
+// Decodes the images load_gltf_image kept (PNG, JPEG: tinygltf's stb_image; WebP: libwebp),
+// in parallel (TBB); each one it cannot decode goes to ctx.undecodable, in index order.
+void decode_pending_images(tinygltf::Model& model, ImageLoadContext& ctx);
 
 // "textures/a.png", "bufferView 3" or "data URI": where an image's bytes are, for messages.
 std::string gltf_image_source(const tinygltf::Image& image);

@@ -2,8 +2,10 @@
 // traversal, cameras and punctual lights. Meshes and materials live in their own files.
 #include "scene_io/gltf_loader.h"
 
+#include <chrono>
 #include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -585,14 +587,27 @@ GltfDocument read_gltf_from_memory(const std::vector<std::uint8_t>& bytes, const
 }
 
 GltfDocument read_gltf(const std::string& path) {
+  const auto start = std::chrono::steady_clock::now();
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw SceneLoadError(path, "is a directory, not a glTF file");
-  std::ifstream in(path, std::ios::binary);
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
   if (!in) throw SceneLoadError(path, std::string("cannot be opened: ") + std::strerror(errno));
-  std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)),
-                                  std::istreambuf_iterator<char>());
+  const std::streamoff size = in.tellg();
+  std::vector<std::uint8_t> bytes;
+  if (size > 0) {  // a pipe or device reports no size: read to its end instead
+    bytes.resize(static_cast<std::size_t>(size));
+    in.seekg(0);
+    in.read(reinterpret_cast<char*>(bytes.data()), size);
+    if (in.gcount() != size) throw SceneLoadError(path, "could not be read");
+  } else {
+    in.clear();
+    in.seekg(0);
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
   if (in.bad()) throw SceneLoadError(path, "could not be read");
-  return read_gltf_from_memory(bytes, path, directory_of(path));
+  GltfDocument document = read_gltf_from_memory(bytes, path, directory_of(path));
+  document.read_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return document;
 }
 
 GltfLoadResult convert_gltf(const GltfDocument& document, const GltfLoadParams& params) {

@@ -48,6 +48,7 @@ struct GltfDocument {
   std::string path;  // as given: errors name it
   tinygltf::Model model;
   GltfDefects defects;  // objects kept as placeholders: refused if used, else warned about
+  double read_seconds = 0.0;  // read_gltf: reading, parsing, decoding images
 };
 
 GltfDocument read_gltf(const std::string& path);

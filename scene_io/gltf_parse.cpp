@@ -125,6 +125,7 @@ tinygltf::Model parse_gltf(const std::vector<std::uint8_t>& bytes, const std::st
   if (model.asset.version.rfind("2.", 0) != 0)
     throw SceneLoadError(name, fmt::format("is glTF version '{}'; tessera reads version 2.x",
                                            model.asset.version));
+  decode_pending_images(model, ctx);
   for (const auto& [index, problem] : ctx.undecodable) defects.add(fmt::format("image {}", index), problem);
   check_external_images(model, base_dir, defects);
   restore_placeholders(model, defects);

@@ -66,5 +66,87 @@ TEST(Interrupt, SecondSignalExitsAtOnceAndKeepsTheOldFile) {
   EXPECT_NE(r.err.find("interrupted again"), std::string::npos) << r.err;
 }
 
+std::string file_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+std::vector<std::string> temporary_files(const std::string& dir) {
+  std::vector<std::string> found;
+  for (const auto& entry : std::filesystem::directory_iterator(dir))
+    if (entry.path().filename().string().rfind(".tessera-tmp-", 0) == 0) found.push_back(entry.path().string());
+  return found;
+}
+
+// A finished frame at -o: what a render interrupted over it must leave byte for byte.
+std::string finished_frame(const std::string& dir) {
+  const std::string out = dir + "/frame.exr";
+  const test::CommandResult r = test::run_command("'" + test::tessera_exe() + "' render '" +
+                                                  test::scene_path("cornell-box/cornell-box.gltf") + "' -o '" + out +
+                                                  "' --width 16 --spp 2 -q");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  return out;
+}
+
+TEST(Interrupt, OverAFinishedFrameThePartialGoesBesideIt) {
+  const std::string dir = test::make_temp_dir("interrupt-finished");
+  const std::string out = finished_frame(dir), before = file_bytes(out);
+  const test::CommandResult r = interrupted_render(out, "kill -TERM $pid;", "--width 200 --tile-size 32");
+  EXPECT_EQ(r.exit_code, 130) << r.err;
+  EXPECT_TRUE(file_bytes(out) == before) << "the finished frame was replaced";
+  const std::string partial = dir + "/frame.partial.exr";
+  ASSERT_TRUE(std::filesystem::exists(partial)) << r.err;
+  EXPECT_EQ(test::exr_int(partial, "partial"), 1);
+  EXPECT_NE(r.err.find(out + " holds a finished frame, kept; the partial frame goes beside it (continue it with "
+                             "--resume " + partial + ")"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("wrote " + partial), std::string::npos) << r.err;
+  EXPECT_TRUE(temporary_files(dir).empty());
+}
+
+// Any partial frame (here one stopped by its time limit) goes beside a finished one; resumed
+// to the end, it becomes the finished frame at -o (the same bits as one straight render), and
+// the partial file goes.
+TEST(Interrupt, APartialBesideAFinishedFrameResumesIntoIt) {
+  const std::string dir = test::make_temp_dir("interrupt-resume-beside");
+  const std::string out = finished_frame(dir), before = file_bytes(out);
+  const std::string partial = dir + "/frame.partial.exr", straight = dir + "/straight.exr";
+  const std::string render = "'" + test::tessera_exe() + "' render '" + test::scene_path("cornell-box/cornell-box.gltf") +
+                             "' --width 24 --spp 24 --seed 5 -q -o ";
+  ASSERT_EQ(test::run_command(render + "'" + straight + "'").exit_code, 0);
+  test::CommandResult r = test::run_command(render + "'" + out + "' --time-limit 0.001");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(file_bytes(out) == before) << "the finished frame was replaced";
+  ASSERT_EQ(test::exr_int(partial, "partial"), 1);
+  r = test::run_command("'" + test::tessera_exe() + "' render --resume '" + partial + "' -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(test::exr_int(out, "partial"), 0);
+  EXPECT_TRUE(test::exr_rgb(out) == test::exr_rgb(straight));
+  EXPECT_FALSE(std::filesystem::exists(partial));
+  EXPECT_TRUE(temporary_files(dir).empty());
+}
+
+// The second signal lands while a checkpoint is being written (the render checkpoints after
+// every wave; the signals wait for its temporary file): the process ends at once, and the
+// temporary file goes with it; the finished frame stays, the earlier checkpoint beside it.
+TEST(Interrupt, ASecondSignalDuringAWriteLeavesNoTemporaryFile) {
+  const std::string dir = test::make_temp_dir("interrupt-second-write");
+  const std::string out = finished_frame(dir), before = file_bytes(out);
+  const std::string partial = dir + "/frame.partial.exr";
+  const std::string writing = "ls -a '" + dir + "' | grep -q '^.tessera-tmp-'";
+  test::CommandResult r;
+  for (int attempt = 0; attempt < 3; ++attempt) {  // two signals merged into one: again
+    r = interrupted_render(out,
+                           "until [ -f '" + partial + "' ]; do sleep 0.01; done; until " + writing +
+                               "; do :; done; kill -TERM $pid; sleep 0.02; kill -TERM $pid;",
+                           "--width 500 --tile-size 64 --checkpoint 0.001");
+    if (r.err.find("interrupted again") != std::string::npos) break;
+  }
+  EXPECT_EQ(r.exit_code, 130) << r.err;
+  EXPECT_NE(r.err.find("interrupted again"), std::string::npos) << r.err;
+  EXPECT_TRUE(file_bytes(out) == before) << "the finished frame was replaced";
+  EXPECT_EQ(test::exr_int(partial, "partial"), 1);
+  EXPECT_EQ(temporary_files(dir), std::vector<std::string>{});
+}
+
 }  // namespace
 }  // namespace tessera

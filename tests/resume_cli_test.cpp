@@ -10,6 +10,7 @@
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfIntAttribute.h>
+#include <OpenEXR/ImfMultiPartInputFile.h>
 #include <OpenEXR/ImfStringAttribute.h>
 
 #include <algorithm>
@@ -50,10 +51,11 @@ std::vector<float> channel_of(const std::string& path, const std::string& name) 
   return px;
 }
 
+// The resume data lives in the second part of the file (the first holds the frame alone).
 bool has_resume_data(const std::string& path) {
-  Imf::InputFile file(path.c_str());
-  return file.header().findTypedAttribute<Imf::StringAttribute>("tesseraResume") &&
-         file.header().channels().findChannel("tessera.samples");
+  Imf::MultiPartInputFile file(path.c_str());
+  return file.parts() == 2 && file.header(1).findTypedAttribute<Imf::StringAttribute>("tesseraResume") &&
+         file.header(1).channels().findChannel("tessera.samples");
 }
 
 TEST(ResumeCli, TimeLimitedThenResumedIsTheSameBitForBit) {
@@ -102,39 +104,56 @@ class ResumeMismatch : public testing::Test {
   test::CommandResult resume(const std::string& scene, const std::string& args) {
     return render(scene, "--resume " + quote(part_) + " -o " + quote(dir_ + "/out.exr") + " " + args);
   }
+  // Each option given with the file's settings: refused (exit 2) with the message.
+  template <std::size_t N>
+  void expect_refused(const std::pair<std::string, std::string> (&cases)[N]) {
+    for (const auto& [args, message] : cases) {
+      const auto r = resume(cornell(), args + " -q");  // the others: the file's
+      EXPECT_EQ(r.exit_code, 2) << args;
+      EXPECT_NE(r.err.find(message), std::string::npos) << args << ": " << r.err;
+    }
+  }
   std::string dir_, part_;
 };
 
-TEST_F(ResumeMismatch, AnotherSppIsRefused) {
-  const auto r = resume(cornell(), "--width 40 --spp 41 --max-bounces 4 --seed 7 -q");
+// --spp may raise the target (the file's samples are the first ones of the longer render),
+// never lower it.
+TEST_F(ResumeMismatch, ALowerSppIsRefusedAHigherOneRaisesTheTarget) {
+  auto r = resume(cornell(), "--spp 39 -q");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(r.err, "tessera: error: --resume " + part_ +
-                       ": spp differs: the file has 40, this render 41; resume with the options it was started with\n");
+                       ": --spp 39 contradicts the file, rendered with --spp 40 (--spp may only raise the target); "
+                       "leave it out to continue as it was started\n");
   EXPECT_FALSE(fs::exists(dir_ + "/out.exr"));
+  r = resume(cornell(), "--spp 41 -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(test::exr_int(dir_ + "/out.exr", "samplesPerPixel"), 41);
+  // The partial stopped after the first wave, which a 41-spp render shares: the same bits.
+  ASSERT_EQ(render(cornell(), "-o " + quote(dir_ + "/straight.exr") + " --width 40 --spp 41 --max-bounces 4 --seed 7 -q")
+                .exit_code, 0);
+  const std::vector<float> straight = test::exr_rgb(dir_ + "/straight.exr"), raised = test::exr_rgb(dir_ + "/out.exr");
+  ASSERT_EQ(straight.size(), raised.size());
+  EXPECT_EQ(std::memcmp(straight.data(), raised.data(), straight.size() * sizeof(float)), 0);
 }
 
+// An option given that contradicts the file is named, with the value the file has.
 TEST_F(ResumeMismatch, AnotherSeedSizeOrCameraIsRefused) {
-  for (const std::string args : {"--width 40 --spp 40 --max-bounces 4 --seed 8 -q", "--width 41 --spp 40 --max-bounces 4 --seed 7 -q",
-                                 "--width 40 --spp 40 --max-bounces 4 --seed 7 -q --fov 30",
-                                 "--width 40 --spp 40 --max-bounces 4 --seed 7 -q --background 1"}) {
-    const auto r = resume(cornell(), args);
-    EXPECT_EQ(r.exit_code, 2) << args;
-    EXPECT_NE(r.err.find("differs: the file has"), std::string::npos) << args << ": " << r.err;
-  }
+  const std::pair<std::string, std::string> cases[] = {
+      {"--seed 8", "--seed 8 contradicts the file, rendered with --seed 7"},
+      {"--width 41", "--width 41 contradicts the file, rendered with --width 40"},
+      {"--fov 30", "--fov 30 contradicts the file, rendered without --fov"},
+      {"--background 1", "--background 1 contradicts the file, rendered with --background auto"}};
+  expect_refused(cases);
 }
 
 // Settings that change what a sample adds: the pixel filter, light sampling and clamping.
 TEST_F(ResumeMismatch, AnotherPixelFilterLightSamplingOrClampIsRefused) {
   const std::pair<std::string, std::string> cases[] = {
-      {" --pixel-filter box", "pixel-filter differs: the file has blackman-harris 1.5, this render box 1"},
-      {" --filter-width 2", "pixel-filter differs: the file has blackman-harris 1.5, this render blackman-harris 2"},
-      {" --light-sampling bsdf", "light-sampling differs: the file has mis, this render bsdf"},
-      {" --clamp 10", "clamp differs: the file has 0, this render 10"}};
-  for (const auto& [args, message] : cases) {
-    const auto r = resume(cornell(), kSettings + args);
-    EXPECT_EQ(r.exit_code, 2) << args;
-    EXPECT_NE(r.err.find(message), std::string::npos) << args << ": " << r.err;
-  }
+      {"--pixel-filter box", "--pixel-filter box contradicts the file, rendered with --pixel-filter blackman-harris"},
+      {"--filter-width 2", "--filter-width 2 contradicts the file, rendered without --filter-width"},
+      {"--light-sampling bsdf", "--light-sampling bsdf contradicts the file, rendered with --light-sampling mis"},
+      {"--clamp 10", "--clamp 10 contradicts the file, rendered without --clamp"}};
+  expect_refused(cases);
 }
 
 TEST_F(ResumeMismatch, AnotherSceneFileIsRefused) {
@@ -235,17 +254,20 @@ TEST(AdaptiveCli, TheExrRecordsCountsAndThresholdAndTheSummaryTheConvergedShare)
   EXPECT_NEAR(printed, 100.0 * converged / spp.size(), 0.5) << r.err;
 }
 
-TEST(ResumeCli, AnotherNoiseThresholdOrNoneIsRefused) {
+TEST(ResumeCli, AnotherNoiseThresholdIsRefusedNoneGivenIsTheFiles) {
   const std::string dir = test::make_temp_dir("resume-cli-adaptive-mismatch");
   const std::string part = dir + "/part.exr";
   ASSERT_EQ(render(cornell(), "-o " + quote(part) + kAdaptive + " --time-limit 0.001").exit_code, 0);
   auto r = render(cornell(), "--resume " + quote(part) + " -o " + quote(dir + "/out.exr") + kSettings +
                                  " --noise-threshold 0.1 --min-spp 8 --aov halves");
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find("noise-threshold differs: the file has 0.05, this render 0.1"), std::string::npos) << r.err;
-  r = render(cornell(), "--resume " + quote(part) + " -o " + quote(dir + "/out.exr") + kSettings + " --aov halves");
-  EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find("noise-threshold differs: the file has 0.05, this render (nothing)"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--noise-threshold 0.1 contradicts the file, rendered with --noise-threshold 0.05"),
+            std::string::npos) << r.err;
+  // Left out, the threshold, minimum and AOVs are the file's: the adaptive render goes on.
+  r = render(cornell(), "--resume " + quote(part) + " -o " + quote(dir + "/out.exr") + kSettings);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_FLOAT_EQ(test::exr_float(dir + "/out.exr", "noiseThreshold"), 0.05f);
+  EXPECT_EQ(test::exr_int(dir + "/out.exr", "minSamplesPerPixel"), 8);
 }
 
 }  // namespace

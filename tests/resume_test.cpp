@@ -3,6 +3,11 @@
 // the EXR that carries the film. Time limits and checkpoints stop and report where expected.
 #include <gtest/gtest.h>
 
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfMultiPartInputFile.h>
+#include <OpenEXR/ImfOutputFile.h>
 
 #include "renderer/image_output.h"
 #include "renderer/render.h"
@@ -106,6 +111,43 @@ TEST(Resume, TheExrCarriesTheFilmLosslessly) {
   EXPECT_EQ(read_resume_settings(path), params.resume_settings);
   expect_same_film(read_resume_film(path, {37, 23, film.aovs, 20}), film);
   EXPECT_THROW(read_resume_film(path, {36, 23, film.aovs, 20}), ResumeError);  // another size
+}
+
+// The resume data is the file's second part, which layer lists built from the first never
+// show; a partial written before (one part, the tessera.* channels beside RGB) still reads.
+TEST(Resume, TheFilmIsTheSecondPartAndOldSinglePartFilesStillRead) {
+  FilmState film = checkpoints_of(settings())[1];
+  const std::string dir = test::make_temp_dir("resume-parts");
+  ImageWriteParams params;
+  params.metadata.partial = true;
+  params.resume_film = &film;
+  params.resume_settings = "format=1\nspp=20\n";
+  write_image(dir + "/two.exr", Film(film).resolve(), params);
+  {
+    Imf::MultiPartInputFile two((dir + "/two.exr").c_str());
+    ASSERT_EQ(two.parts(), 2);
+    EXPECT_EQ(two.header(0).name(), "rgba");
+    EXPECT_EQ(two.header(1).name(), kResumePartName);
+    for (auto it = two.header(0).channels().begin(); it != two.header(0).channels().end(); ++it)
+      EXPECT_NE(std::string(it.name()).rfind("tessera.", 0), 0u) << it.name();
+  }
+  // The layout of before: one part, RGB and the resume layers together.
+  const std::string old = dir + "/one.exr";
+  {
+    Imf::Header header(film.width, film.height);
+    std::vector<float> red(film.pixel_count(), 0.5f);
+    Imf::FrameBuffer fb;
+    header.channels().insert("R", Imf::Channel(Imf::FLOAT));
+    fb.insert("R", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(red.data()), sizeof(float), sizeof(float) * film.width));
+    ResumeLayers layers(film, params.resume_settings);
+    layers.insert_into(header, fb, header.dataWindow());
+    Imf::OutputFile file(old.c_str(), header);
+    file.setFrameBuffer(fb);
+    file.writePixels(film.height);
+  }
+  EXPECT_EQ(read_resume_settings(old), params.resume_settings);
+  expect_same_film(read_resume_film(old, {37, 23, film.aovs, 20}), film);
+  expect_same_film(read_resume_film(dir + "/two.exr", {37, 23, film.aovs, 20}), film);
 }
 
 TEST(Resume, CountsNoRenderStopsAtAreRefused) {

@@ -1,25 +1,30 @@
 #include "renderer/integrator/materials.h"
 
+#include <tbb/parallel_for.h>
+
 namespace tessera {
 
 MaterialTable::MaterialTable(const SceneDescription& scene) : materials_(scene.materials) {
   srgb_.resize(scene.images.size());
   linear_.resize(scene.images.size());
-  auto need = [&](const TextureRef& ref, std::vector<TextureImage>& cache, ColorEncoding enc) {
-    if (ref.present() && cache[ref.image].empty())
-      cache[ref.image] = make_texture_image(scene.images[ref.image], enc);
-  };
+  std::vector<std::uint8_t> need_srgb(scene.images.size()), need_linear(scene.images.size());
   for (const Material& m : materials_) {
     for (const TextureRef* srgb : {&m.base_color_texture, &m.emissive_texture, &m.specular_color_texture,
                                    &m.sheen_color_texture, &m.diffuse_transmission_color_texture})
-      need(*srgb, srgb_, ColorEncoding::SRGB);
+      if (srgb->present()) need_srgb[srgb->image] = 1;
     for (const TextureRef* linear :
          {&m.metallic_roughness_texture, &m.normal_texture, &m.transmission_texture, &m.thickness_texture,
           &m.specular_texture, &m.clearcoat_texture, &m.clearcoat_roughness_texture, &m.sheen_roughness_texture,
           &m.clearcoat_normal_texture, &m.anisotropy_texture, &m.diffuse_transmission_texture,
           &m.iridescence_texture, &m.iridescence_thickness_texture})
-      need(*linear, linear_, ColorEncoding::Linear);
+      if (linear->present()) need_linear[linear->image] = 1;
   }
+  // Each image in each encoding it is read in, all at once (make_texture_image splits rows too).
+  tbb::parallel_for(std::size_t{0}, 2 * scene.images.size(), [&](std::size_t k) {
+    const std::size_t i = k / 2;
+    if (k % 2 == 0 && need_srgb[i]) srgb_[i] = make_texture_image(scene.images[i], ColorEncoding::SRGB);
+    if (k % 2 == 1 && need_linear[i]) linear_[i] = make_texture_image(scene.images[i], ColorEncoding::Linear);
+  });
 }
 
 const Material& MaterialTable::material(int index) const {

@@ -188,7 +188,9 @@ vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ra
       const float weight = bsdf_pdf > 0.0f && environment_sampling
                                ? strategy_weight(mode, false, bsdf_pdf, scene.environment.pdf(ray.direction))
                                : 1.0f;
-      radiance += throughput * scene.environment.radiance(ray.direction) * weight;
+      const bool camera_miss = bounce == 0 && passes == 0;
+      if (!(camera_miss && params.transparent_background))
+        radiance += throughput * scene.environment.radiance(ray.direction) * weight;
       if (features_pending && (bounce > 0 || passes > 0)) first.albedo = feature_weight * scene.environment.radiance(ray.direction);
       break;
     }

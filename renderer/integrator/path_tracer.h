@@ -19,6 +19,9 @@ struct PathTracerParams {
   int roulette_start = 3;  // bounces before Russian roulette may end a path
   LightSampling light_sampling = LightSampling::Mis;
   float clamp = 0.0f;  // > 0: clamp each sample's radiance to this luminance (biased; off by default)
+  // A camera ray that hits nothing adds no background (it still lights what rays reach):
+  // the film's alpha says where the background shows, for compositing over a plate.
+  bool transparent_background = false;
 };
 
 // What the camera ray saw first, for the albedo, normal and depth outputs; through a mirror,

@@ -1,0 +1,62 @@
+#include "renderer/traversal_ceiling.h"
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+
+#include <tbb/blocked_range2d.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "renderer/integrator/bsdf.h"
+#include "renderer/sampler.h"
+
+namespace tessera {
+namespace {
+
+// A bounce direction: cosine-distributed about the normal, on the side the ray came from.
+vec3 diffuse_bounce(vec3 normal, const vec3& incoming, const vec2& u) {
+  normal = glm::normalize(normal);
+  if (glm::dot(normal, incoming) > 0.0f) normal = -normal;
+  return Frame::from_normal(normal).to_world(sample_cosine_hemisphere(u));
+}
+
+std::uint64_t trace_pixel(const RenderScene& scene, const RenderCamera& camera, const TraversalCeilingParams& p, int x,
+                          int y) {
+  std::uint64_t rays = 0;
+  for (int s = 0; s < p.spp; ++s) {
+    Sampler rng(SamplerKind::independent, x, y, s, p.seed);
+    const vec2 jitter = rng.next2();
+    Ray ray = camera.generate_ray({(x + jitter.x) / p.width, (y + jitter.y) / p.height}, vec2(0.5f));
+    for (int bounce = 0; bounce <= p.max_bounces; ++bounce) {
+      HitRecord hit;
+      vec3 ng;
+      ++rays;
+      if (!scene.geometry->intersect(ray, hit, &ng) || !(glm::dot(ng, ng) > 0.0f)) break;
+      const vec3 p_hit = ray.origin + hit.t * ray.direction;
+      const vec3 wi = diffuse_bounce(ng, ray.direction, rng.next2());
+      ray = Ray{p_hit, wi, 1e-4f * (1.0f + glm::length(p_hit)), std::numeric_limits<float>::infinity(), 0.0f};
+    }
+  }
+  return rays;
+}
+
+}  // namespace
+
+TraversalCeilingResult trace_traversal_ceiling(const RenderScene& scene, const RenderCamera& camera,
+                                               const TraversalCeilingParams& p) {
+  std::atomic<std::uint64_t> rays{0};
+  const auto start = std::chrono::steady_clock::now();
+  tbb::task_arena arena(p.threads > 0 ? p.threads : tbb::task_arena::automatic);
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range2d<int>(0, p.height, 32, 0, p.width, 32), [&](const tbb::blocked_range2d<int>& r) {
+      std::uint64_t local = 0;
+      for (int y = r.rows().begin(); y < r.rows().end(); ++y)
+        for (int x = r.cols().begin(); x < r.cols().end(); ++x) local += trace_pixel(scene, camera, p, x, y);
+      rays += local;
+    });
+  });
+  return {rays.load(), std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()};
+}
+
+}  // namespace tessera

@@ -1,0 +1,31 @@
+// What Embree alone traces on a scene: the ceiling tessera's rays/s are measured against
+// (issue "Close to the ceiling"). The same camera and image as a render, but paths of pure
+// diffuse bounces (cosine-distributed about the geometric normal) with no shading, no light
+// sampling, no shadow rays and no film: only closest-hit traversal through the scene's own
+// Embree BVH (its alpha filters included) and the few instructions between two rays.
+#pragma once
+
+#include <cstdint>
+
+#include "renderer/camera.h"
+#include "renderer/render_scene.h"
+
+namespace tessera {
+
+struct TraversalCeilingParams {
+  int width = 0, height = 0;
+  int spp = 1;
+  int max_bounces = 8;  // rays per camera sample: at most max_bounces + 1
+  int threads = 0;  // 0: all cores
+  std::uint32_t seed = 1;
+};
+
+struct TraversalCeilingResult {
+  std::uint64_t rays = 0;
+  double seconds = 0.0;
+};
+
+TraversalCeilingResult trace_traversal_ceiling(const RenderScene& scene, const RenderCamera& camera,
+                                               const TraversalCeilingParams& params);
+
+}  // namespace tessera

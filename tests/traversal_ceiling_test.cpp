@@ -1,0 +1,47 @@
+// The traversal-only pass `tessera bench` measures tessera against: it traces exactly the
+// rays its definition says. Inside a closed sphere every path bounces until its limit; with
+// nothing in the scene each camera ray is the whole path; with the camera outside a sphere
+// that fills part of the view, every path that enters the sphere's image and bounces off its
+// convex outside leaves after one bounce.
+#include <gtest/gtest.h>
+
+#include "renderer/render_scene.h"
+#include "renderer/traversal_ceiling.h"
+#include "tests/scene_builders.h"
+
+namespace tessera {
+namespace {
+
+RenderCamera camera_at(glm::vec3 eye, glm::vec3 target, float fov, int w, int h) {
+  return make_camera(test::look_at(eye, target, fov), w, h, {});
+}
+
+TEST(TraversalCeiling, AClosedSphereKeepsEveryPathToItsBounceLimit) {
+  SceneDescription scene;
+  const int m = test::add_material(scene, test::diffuse(glm::vec3(0.5f)));
+  test::add_mesh(scene, test::make_sphere(glm::vec3(0.0f), 10.0f, 3, m, true));
+  const RenderScene rs(std::move(scene), EnvironmentParams{});
+  const TraversalCeilingParams p{16, 12, 3, 5, 2};
+  const TraversalCeilingResult r = trace_traversal_ceiling(rs, camera_at({0, 0, 1}, {0, 0, 0}, 60, 16, 12), p);
+  EXPECT_EQ(r.rays, 16u * 12u * 3u * 6u);
+  EXPECT_GT(r.seconds, 0.0);
+}
+
+TEST(TraversalCeiling, AnEmptySceneTracesOnlyTheCameraRays) {
+  const RenderScene rs(SceneDescription{}, EnvironmentParams{});
+  const TraversalCeilingResult r = trace_traversal_ceiling(rs, camera_at({0, 0, 1}, {0, 0, 0}, 60, 8, 8), {8, 8, 4, 8, 1});
+  EXPECT_EQ(r.rays, 8u * 8u * 4u);
+}
+
+TEST(TraversalCeiling, AConvexObjectIsLeftAfterOneBounce) {
+  SceneDescription scene;
+  const int m = test::add_material(scene, test::diffuse(glm::vec3(0.5f)));
+  test::add_mesh(scene, test::make_sphere(glm::vec3(0.0f), 1.0f, 4, m));
+  const RenderScene rs(std::move(scene), EnvironmentParams{});
+  // The whole view inside the sphere's silhouette: every camera ray hits, every bounce leaves.
+  const TraversalCeilingResult r = trace_traversal_ceiling(rs, camera_at({0, 0, 5}, {0, 0, 0}, 2, 8, 8), {8, 8, 2, 8, 2});
+  EXPECT_EQ(r.rays, 8u * 8u * 2u * 2u);
+}
+
+}  // namespace
+}  // namespace tessera
