@@ -117,6 +117,7 @@ const std::uint8_t* AccessorReader::view_bytes(int view, std::size_t offset, std
   if (view < 0 || view >= static_cast<int>(model.bufferViews.size()))
     fail(fmt::format("{} refers to bufferView {}, but the file has {}", what, view,
                      count_of(model.bufferViews.size(), "bufferView")));
+  if (defects) defects->check_used(fmt::format("bufferView {}", view), file);
   const tinygltf::BufferView& bv = model.bufferViews[view];
   if (bv.buffer < 0 || bv.buffer >= static_cast<int>(model.buffers.size()))
     fail(fmt::format("bufferView {} refers to buffer {}, but the file has {}", view, bv.buffer,

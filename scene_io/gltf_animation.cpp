@@ -53,6 +53,10 @@ AnimationChannel read_channel(const tinygltf::Model& model, const tinygltf::Anim
                      count_of(anim.samplers.size(), "sampler")));
   const tinygltf::AnimationSampler& sampler = anim.samplers[src.sampler];
   c.interpolation = parse_interpolation(sampler.interpolation, what, file);
+  const tinygltf::Accessor& input = reader.accessor(sampler.input, what + " input");
+  if (input.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || input.type != TINYGLTF_TYPE_SCALAR)
+    fail(fmt::format("has input accessor {} of {} {}; keyframe times are FLOAT SCALAR", sampler.input,
+                     gltf_component_type_name(input.componentType), gltf_type_name(input.type)));
   c.times = reader.floats(sampler.input, 1, what + " input");
   if (c.times.empty()) fail("has no keyframes");
   for (std::size_t k = 0; k < c.times.size(); ++k)
@@ -90,28 +94,35 @@ glm::quat slerp_shortest(glm::quat a, glm::quat b, float u) {
   return (std::sin((1.0f - u) * theta) / s) * a + (std::sin(u * theta) / s) * b;
 }
 
+
+std::string animation_name(const tinygltf::Model& model, std::size_t a) {
+  return model.animations[a].name.empty() ? fmt::format("animation {}", a) : model.animations[a].name;
+}
+
 }  // namespace
 
-std::vector<Animation> read_animations(const tinygltf::Model& model, const AccessorReader& reader,
-                                       const std::string& file) {
-  std::vector<Animation> out;
-  for (std::size_t a = 0; a < model.animations.size(); ++a) {
-    const tinygltf::Animation& src = model.animations[a];
-    Animation anim;
-    anim.name = src.name.empty() ? fmt::format("animation {}", a) : src.name;
-    for (std::size_t i = 0; i < src.channels.size(); ++i) {
-      if (src.channels[i].target_node < 0) continue;  // the specification: no node, no effect
-      anim.channels.push_back(
-          read_channel(model, src, src.channels[i], reader, fmt::format("animation {} channel {}", a, i), file));
-    }
-    for (std::size_t i = 0; i < anim.channels.size(); ++i) {
-      const std::vector<float>& t = anim.channels[i].times;
-      anim.start = i == 0 ? t.front() : std::min(anim.start, t.front());
-      anim.end = i == 0 ? t.back() : std::max(anim.end, t.back());
-    }
-    out.push_back(std::move(anim));
-  }
+std::vector<Animation> animation_names(const tinygltf::Model& model) {
+  std::vector<Animation> out(model.animations.size());
+  for (std::size_t a = 0; a < out.size(); ++a) out[a].name = animation_name(model, a);
   return out;
+}
+
+Animation read_animation(const tinygltf::Model& model, std::size_t a, const AccessorReader& reader,
+                         const std::string& file) {
+  const tinygltf::Animation& src = model.animations[a];
+  Animation anim;
+  anim.name = animation_name(model, a);
+  for (std::size_t i = 0; i < src.channels.size(); ++i) {
+    if (src.channels[i].target_node < 0) continue;  // the specification: no node, no effect
+    anim.channels.push_back(
+        read_channel(model, src, src.channels[i], reader, fmt::format("animation {} channel {}", a, i), file));
+  }
+  for (std::size_t i = 0; i < anim.channels.size(); ++i) {
+    const std::vector<float>& t = anim.channels[i].times;
+    anim.start = i == 0 ? t.front() : std::min(anim.start, t.front());
+    anim.end = i == 0 ? t.back() : std::max(anim.end, t.back());
+  }
+  return anim;
 }
 
 std::vector<int> choose_animations(const std::vector<Animation>& animations, const std::string& wanted,

@@ -36,11 +36,14 @@ struct Animation {
   float start = 0.0f, end = 0.0f;  // the first and last key time over its channels
 };
 
-// Every animation of the file. Throws SceneLoadError for a channel or sampler the
+// Animation `index` of the file. Throws SceneLoadError for a channel or sampler the
 // specification forbids (indices out of range, times not increasing, output counts that do
 // not match the inputs, a channel on a node given by a matrix).
-std::vector<Animation> read_animations(const tinygltf::Model& model, const AccessorReader& reader,
-                                       const std::string& file);
+Animation read_animation(const tinygltf::Model& model, std::size_t index, const AccessorReader& reader,
+                         const std::string& file);
+
+// Every animation of the file by name alone ("animation N" when it has none), without channels.
+std::vector<Animation> animation_names(const tinygltf::Model& model);
 
 // Which animations play: `wanted` by name, else index, "all" or empty for every one (as
 // viewers play them), "none" for none. Returns their indices; throws SceneLoadError for a

@@ -1,7 +1,5 @@
 #include "scene_io/gltf_defects.h"
 
-#include "scene_io/load_error.h"
-
 namespace tessera {
 
 void GltfDefects::check_used(const std::string& object, const std::string& file) const {
@@ -11,7 +9,7 @@ void GltfDefects::check_used(const std::string& object, const std::string& file)
 std::vector<std::string> GltfDefects::unused_warnings() const {
   std::vector<std::string> out = notes;
   for (const auto& [object, problem] : problems)
-    if (problem.invalid) out.push_back("ignored, as the scene does not use it: " + problem.text);
+    if (problem.invalid) out.push_back(kUnusedPrefix + problem.text);
   return out;
 }
 

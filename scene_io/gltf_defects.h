@@ -8,7 +8,12 @@
 #include <string>
 #include <vector>
 
+#include "scene_io/load_error.h"
+
 namespace tessera {
+
+// How a warning about an object the scene does not use begins.
+inline constexpr const char* kUnusedPrefix = "ignored, as the scene does not use it: ";
 
 struct GltfDefects {
   struct Problem {
@@ -26,6 +31,26 @@ struct GltfDefects {
   // After a conversion that threw nothing, every problem was in an object nothing used: the
   // notes, and a warning per invalid one.
   std::vector<std::string> unused_warnings() const;
+
+  // Converts `object` ("skin 2") with `read`. When the scene uses it, its defect or what
+  // `read` throws refuses the file. When not, an object with a defect is not read (the defect
+  // is among unused_warnings), and what `read` throws becomes a warning in `warnings`; either
+  // way `placeholder` stands in for it.
+  template <typename T, typename Read>
+  T read_object(bool used, const std::string& object, const std::string& file, std::vector<std::string>& warnings,
+                Read read, T placeholder) const {
+    if (used) {
+      check_used(object, file);
+      return read();
+    }
+    if (problems.count(object)) return placeholder;
+    try {
+      return read();
+    } catch (const SceneLoadError& e) {
+      warnings.push_back(kUnusedPrefix + e.problem());
+    }
+    return placeholder;
+  }
 };
 
 }  // namespace tessera

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cctype>
 #include <cerrno>
 #include <cstdio>
@@ -14,6 +15,7 @@
 #include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
+#include "scene_io/gltf_data_uri.h"
 #include "scene_io/load_error.h"
 
 namespace tessera {
@@ -42,66 +44,49 @@ std::size_t array_size(const Json& j, const char* key) {
 long long index_of(const Json& object, const char* key) {
   const Json* v = member(object, key);
   if (!v) return -1;
+  // (A number this program wrote into the JSON is signed: gltf_prepare.cpp's placeholders.)
+  if (v->is_number_integer() && !v->is_number_unsigned()) return v->get<std::int64_t>() >= 0 ? v->get<std::int64_t>() : -2;
   return v->is_number_unsigned() ? static_cast<long long>(v->get<std::uint64_t>()) : -2;
 }
 
-// Offset of the first character that is not valid base64, or npos.
-std::size_t invalid_base64_at(std::string_view s) {
-  std::size_t end = s.size();
-  while (end > 0 && s.size() - end < 2 && s[end - 1] == '=') --end;
-  for (std::size_t i = 0; i < end; ++i)
-    if (!std::isalnum(static_cast<unsigned char>(s[i])) && s[i] != '+' && s[i] != '/') return i;
-  return std::string_view::npos;
-}
-
-std::size_t base64_decoded_size(std::string_view s) {
-  while (!s.empty() && s.back() == '=') s.remove_suffix(1);
-  return s.size() / 4 * 3 + (s.size() % 4 == 3 ? 2 : s.size() % 4 == 2 ? 1 : 0);
+// Media types whose data URIs tessera reads (tinygltf's, and WebP images).
+bool readable_media_type(const std::string& type) {
+  static const char* kTypes[] = {"application/octet-stream", "application/gltf-buffer", "image/png", "image/jpeg",
+                                 "image/bmp", "image/gif", "image/webp", "text/plain"};
+  return std::any_of(std::begin(kTypes), std::end(kTypes), [&](const char* t) { return type == t; });
 }
 
 // `what` is "buffer 2" or "image 0"; `expected_size` is checked when given.
 Problem check_data_uri(const std::string& what, const std::string& uri,
                        std::optional<std::uint64_t> expected_size) {
-  const std::size_t comma = uri.find(',');
-  if (comma == std::string::npos)
-    return what + " has a data URI without the ',' that ends its header (data:[media type][;base64],data)";
-  const std::string header = uri.substr(0, comma);
-  if (header.size() < 7 || header.compare(header.size() - 7, 7, ";base64") != 0)
-    return fmt::format("{} has a data URI whose header '{}' does not end in ';base64' (tessera reads base64 data "
-                       "URIs only)",
-                       what, shorten(header));
-  if (!tinygltf::IsDataURI(uri.substr(0, comma + 1))) {
-    const std::string media = uri.substr(5, uri.find_first_of(";,") - 5);
-    return fmt::format("{} has a data URI of media type '{}' that tessera cannot read (it reads "
-                       "base64 data URIs of application/octet-stream, application/gltf-buffer, "
-                       "image/png and image/jpeg)",
-                       what, shorten(media));
-  }
-  const std::string_view payload = std::string_view(uri).substr(comma + 1);
-  if (const std::size_t bad = invalid_base64_at(payload); bad != std::string_view::npos)
-    return fmt::format("{} has a data URI that is not valid base64 (character {} of its data is "
-                       "'{}')",
-                       what, bad, payload[bad]);
-  const std::size_t size = base64_decoded_size(payload);
-  if (expected_size && size != *expected_size)
-    return fmt::format("{} has a data URI holding {} bytes, but its byteLength is {}", what, size,
+  std::string why;
+  const std::optional<DataUri> data = decode_data_uri(uri, why);
+  if (!data) return what + " has a data URI " + why;
+  if (!readable_media_type(data->media_type))
+    return fmt::format("{} has a data URI of media type '{}' that tessera cannot read (it reads data URIs of "
+                       "application/octet-stream, application/gltf-buffer, image/png, image/jpeg and image/webp)",
+                       what, shorten(data->media_type));
+  if (expected_size && data->bytes.size() != *expected_size)
+    return fmt::format("{} has a data URI holding {} bytes, but its byteLength is {}", what, data->bytes.size(),
                        *expected_size);
   return std::nullopt;
 }
 
+// The arrays of objects a glTF file holds, and what one of their objects is called.
+struct ObjectArray {
+  const char* key;
+  const char* noun;
+};
+constexpr ObjectArray kArrays[] = {
+    {"buffers", "buffer"},     {"bufferViews", "bufferView"}, {"accessors", "accessor"}, {"meshes", "mesh"},
+    {"nodes", "node"},         {"scenes", "scene"},           {"materials", "material"}, {"images", "image"},
+    {"textures", "texture"},   {"samplers", "sampler"},       {"cameras", "camera"},     {"skins", "skin"},
+    {"animations", "animation"}};
+
 Problem check_arrays(const Json& j) {
-  static const std::pair<const char*, const char*> kArrays[] = {
-      {"buffers", "buffer"},     {"bufferViews", "bufferView"}, {"accessors", "accessor"},
-      {"meshes", "mesh"},        {"nodes", "node"},             {"scenes", "scene"},
-      {"materials", "material"}, {"images", "image"},           {"textures", "texture"},
-      {"samplers", "sampler"},   {"cameras", "camera"},         {"skins", "skin"},
-      {"animations", "animation"}};
   for (const auto& [key, noun] : kArrays) {
     const Json* a = member(j, key);
-    if (!a) continue;
-    if (!a->is_array()) return fmt::format("its \"{}\" is not a JSON array", key);
-    for (std::size_t i = 0; i < a->size(); ++i)
-      if (!(*a)[i].is_object()) return fmt::format("{} {} is not a JSON object", noun, i);
+    if (a && !a->is_array()) return fmt::format("its \"{}\" is not a JSON array", key);
   }
   return std::nullopt;
 }
@@ -116,18 +101,18 @@ Problem check_asset(const Json& j) {
   return std::nullopt;
 }
 
-Problem check_buffer(const Json& b, std::size_t i, const GltfDiagnoseInput& in) {
+Problem check_buffer(const Json& b, std::size_t i, const std::string& base_dir) {
   const std::string what = fmt::format("buffer {}", i);
-  const Json* length_json = member(b, "byteLength");
-  if (!length_json || !length_json->is_number_unsigned()) return what + " has no valid byteLength";
-  const std::uint64_t length = length_json->get<std::uint64_t>();
+  if (index_of(b, "byteLength") < 0) return what + " has no valid byteLength";
+  if (index_of(b, "byteLength") == 0) return what + " has byteLength 0; it must be at least 1";
+  const auto length = static_cast<std::uint64_t>(index_of(b, "byteLength"));
   const Json* uri_json = member(b, "uri");
   if (uri_json && !uri_json->is_string()) return what + " has a uri that is not a string";
   const std::string uri = uri_json ? uri_json->get<std::string>() : "";
   if (uri.empty()) return std::nullopt;  // a defect of the buffer alone (gltf_prepare.cpp)
-  if (uri.rfind("data:", 0) == 0) return check_data_uri(what, uri, length);
+  if (is_data_uri(uri)) return check_data_uri(what, uri, length);
   if (is_remote_uri(uri)) return fmt::format("{}: tessera reads local files only: {}", what, shorten(uri));
-  const std::string path = resolve_gltf_uri(in.base_dir, uri);
+  const std::string path = resolve_gltf_uri(base_dir, uri);
   if (const std::string why = unreadable_reason(path); !why.empty())
     return fmt::format("{} refers to {}, which cannot be opened: {}", what, shorten(uri), why);
   std::error_code ec;
@@ -138,15 +123,31 @@ Problem check_buffer(const Json& b, std::size_t i, const GltfDiagnoseInput& in) 
   return std::nullopt;
 }
 
-Problem check_buffer_view(const Json& v, std::size_t i) {
+Problem check_buffer_view(const Json& v, std::size_t i, const Json& j) {
   const long long buffer = index_of(v, "buffer");
   if (buffer < 0) return fmt::format("bufferView {} has no valid buffer index", i);
+  const long long length = index_of(v, "byteLength");
+  if (length < 0) return fmt::format("bufferView {} has no valid byteLength", i);
+  if (length == 0) return fmt::format("bufferView {} has byteLength 0; it must be at least 1", i);
+  const std::size_t buffers = array_size(j, "buffers");
+  if (buffer >= static_cast<long long>(buffers))
+    return fmt::format("bufferView {} refers to buffer {}, but the file has {}", i, buffer, count_of(buffers, "buffer"));
+  // Its span, against the buffer's byteLength (an EXT_meshopt_compression view's data is decoded).
+  const long long offset = std::max(index_of(v, "byteOffset"), 0LL);
+  const long long buffer_length = index_of((*member(j, "buffers"))[buffer], "byteLength");
+  const Json* extensions = member(v, "extensions");
+  if (buffer_length >= 0 && offset + length > buffer_length && !(extensions && member(*extensions, "EXT_meshopt_compression")))
+    return fmt::format("bufferView {} spans bytes {}..{} of buffer {}, which has only {} bytes", i, offset,
+                       offset + length, buffer, buffer_length);
   if (const Json* stride = member(v, "byteStride")) {
     const bool ok = stride->is_number_unsigned() && stride->get<std::uint64_t>() <= 252 &&
                     stride->get<std::uint64_t>() % 4 == 0;
     if (!ok)
       return fmt::format("bufferView {} has byteStride {}; it must be a multiple of 4, at most 252",
                          i, shorten(stride->dump()));
+    if (static_cast<long long>(stride->get<std::uint64_t>()) > length)
+      return fmt::format("bufferView {} has byteStride {}, more than its byteLength {}", i,
+                         stride->get<std::uint64_t>(), length);
   }
   return std::nullopt;
 }
@@ -162,31 +163,106 @@ Problem check_accessor(const Json& a, std::size_t i) {
   if (component < TINYGLTF_COMPONENT_TYPE_BYTE || component > TINYGLTF_COMPONENT_TYPE_DOUBLE)
     return fmt::format("accessor {} has no valid componentType", i);
   if (index_of(a, "count") < 0) return fmt::format("accessor {} has no valid count", i);
+  if (member(a, "byteOffset") && !member(a, "bufferView"))
+    return fmt::format("accessor {} has a byteOffset but no bufferView", i);
+  const Json* sparse = member(a, "sparse");
+  if (!sparse) return std::nullopt;
+  const Json* indices = member(*sparse, "indices");
+  const Json* values = member(*sparse, "values");
+  if (index_of(*sparse, "count") < 0 || index_of(indices ? *indices : Json(), "bufferView") < 0 ||
+      index_of(indices ? *indices : Json(), "componentType") < 0 || index_of(values ? *values : Json(), "bufferView") < 0)
+    return fmt::format("accessor {} has a sparse object without a count, or indices or values without a bufferView "
+                       "(and the indices a componentType)", i);
   return std::nullopt;
 }
 
-Problem check_mesh_indices(const Json& j) {
-  const Json* meshes = member(j, "meshes");
-  if (!meshes) return std::nullopt;
-  const std::size_t accessors = array_size(j, "accessors"), views = array_size(j, "bufferViews");
-  for (std::size_t m = 0; m < meshes->size(); ++m) {
-    const Json* prims = member((*meshes)[m], "primitives");
-    if (!prims || !prims->is_array() || prims->empty())
-      return fmt::format("mesh {} has no primitives", m);
-    for (std::size_t p = 0; p < prims->size(); ++p) {
-      const long long a = index_of((*prims)[p], "indices");
-      if (a == -1) continue;
-      const std::string what = fmt::format("mesh {} primitive {}", m, p);
-      if (a < 0 || a >= static_cast<long long>(accessors))
-        return fmt::format("{} refers to accessor {} for its indices, but the file has {}", what,
-                           shorten(member((*prims)[p], "indices")->dump()), count_of(accessors, "accessor"));
-      const long long v = index_of((*member(j, "accessors"))[a], "bufferView");
-      if (v >= static_cast<long long>(views))
-        return fmt::format("accessor {} (indices of {}) refers to bufferView {}, but the file has {}",
-                           a, what, v, count_of(views, "bufferView"));
-    }
+// POSITION, NORMAL, TANGENT, TEXCOORD_n, COLOR_n, JOINTS_n, WEIGHTS_n, or an application's _NAME.
+bool known_attribute(const std::string& name) {
+  if (name == "POSITION" || name == "NORMAL" || name == "TANGENT" || (!name.empty() && name[0] == '_')) return true;
+  for (const char* set : {"TEXCOORD_", "COLOR_", "JOINTS_", "WEIGHTS_"}) {
+    const std::size_t n = std::strlen(set);
+    if (name.size() > n && name.compare(0, n, set) == 0 &&
+        std::all_of(name.begin() + static_cast<std::ptrdiff_t>(n), name.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); }))
+      return true;
+  }
+  return false;
+}
+
+// Transforms tinygltf reads one way although the specification forbids them: a matrix with TRS
+// (tinygltf keeps the matrix), a rotation that is not a unit quaternion (tessera normalises it).
+Problem check_node(const Json& node, std::size_t i) {
+  if (member(node, "matrix") && (member(node, "translation") || member(node, "rotation") || member(node, "scale")))
+    return fmt::format("node {} has both a matrix and translation, rotation or scale", i);
+  const Json* rotation = member(node, "rotation");
+  if (rotation && rotation->is_array() && rotation->size() == 4 &&
+      std::all_of(rotation->begin(), rotation->end(), [](const Json& v) { return v.is_number(); })) {
+    double squared = 0;
+    for (const Json& v : *rotation) squared += v.get<double>() * v.get<double>();
+    if (std::abs(std::sqrt(squared) - 1.0) > 0.01)
+      return fmt::format("node {} has a rotation quaternion of length {:.4g}; it must be a unit quaternion", i,
+                         std::sqrt(squared));
   }
   return std::nullopt;
+}
+
+Problem check_mesh(const Json& mesh, std::size_t m, const Json& j) {
+  const Json* prims = member(mesh, "primitives");
+  if (!prims || !prims->is_array() || prims->empty())
+    return fmt::format("mesh {} has {}; glTF requires an array of at least one primitive", m,
+                       !prims ? "no \"primitives\"" : prims->is_array() ? "an empty \"primitives\" array"
+                                                                        : "a \"primitives\" that is not an array");
+  const std::size_t accessors = array_size(j, "accessors"), views = array_size(j, "bufferViews");
+  for (std::size_t p = 0; p < prims->size(); ++p) {
+    const std::string what = fmt::format("mesh {} primitive {}", m, p);
+    const Json* attributes = member((*prims)[p], "attributes");
+    if (!attributes || !attributes->is_object()) return what + " has no \"attributes\" object";
+    for (auto it = attributes->begin(); it != attributes->end(); ++it) {
+      if (!it->is_number_integer())
+        return fmt::format("{} has attribute {} that is not an accessor index", what, shorten(it.key()));
+      if (!known_attribute(it.key()))
+        return fmt::format("{} has attribute {}, which glTF does not define (an application's own begins with '_')",
+                           what, shorten(it.key()));
+    }
+    const long long a = index_of((*prims)[p], "indices");
+    if (a == -1) continue;
+    if (a < 0 || a >= static_cast<long long>(accessors))
+      return fmt::format("{} refers to accessor {} for its indices, but the file has {}", what,
+                         shorten(member((*prims)[p], "indices")->dump()), count_of(accessors, "accessor"));
+    const long long v = index_of((*member(j, "accessors"))[a], "bufferView");
+    if (v >= static_cast<long long>(views))
+      return fmt::format("accessor {} (indices of {}) refers to bufferView {}, but the file has {}", a, what, v,
+                         count_of(views, "bufferView"));
+  }
+  return std::nullopt;
+}
+
+// Texture references tinygltf reads as none: a textureInfo without an index, or a negative one.
+Problem check_texture_infos(const Json& material, std::size_t m) {
+  std::vector<std::pair<std::string, const Json*>> stack = {{"", &material}};
+  while (!stack.empty()) {  // every textureInfo, in the core material and its extensions
+    const auto [key, object] = stack.back();
+    stack.pop_back();
+    if (!object->is_object()) continue;
+    const Json* index = member(*object, "index");
+    const bool texture_info = key.size() > 7 && key.compare(key.size() - 7, 7, "Texture") == 0;
+    if (texture_info && (!index || !index->is_number_integer()))
+      return fmt::format("material {} has a {} without an index", m, key);
+    if (index && index->is_number_integer() && index->get<std::int64_t>() < 0)
+      return fmt::format("material {} has {} index {}, which names no texture", m, key, index->get<std::int64_t>());
+    for (auto it = object->begin(); it != object->end(); ++it) stack.emplace_back(it.key(), &*it);
+  }
+  return std::nullopt;
+}
+
+Problem check_material(const Json& material, std::size_t m) {
+  const Json* pbr = member(material, "pbrMetallicRoughness");
+  const Json* base = pbr ? member(*pbr, "baseColorFactor") : nullptr;
+  if (base && (!base->is_array() || base->size() != 4))
+    return fmt::format("material {} has a baseColorFactor that is not 4 numbers", m);
+  const Json* emissive = member(material, "emissiveFactor");
+  if (emissive && (!emissive->is_array() || emissive->size() != 3))
+    return fmt::format("material {} has an emissiveFactor that is not 3 numbers", m);
+  return check_texture_infos(material, m);
 }
 
 Problem check_image(const Json& image, std::size_t i, std::size_t views) {
@@ -194,6 +270,7 @@ Problem check_image(const Json& image, std::size_t i, std::size_t views) {
   const Json* uri = member(image, "uri");
   const long long view = index_of(image, "bufferView");
   if (!uri && view == -1) return what + " has neither a uri nor a bufferView";
+  if (uri && view != -1) return what + " has both a uri and a bufferView";
   if (uri && !uri->is_string()) return what + " has a uri that is not a string";
   if (uri && uri->get<std::string>().rfind("data:", 0) == 0)
     return check_data_uri(what, uri->get<std::string>(), std::nullopt);
@@ -227,13 +304,25 @@ Problem check_skin(const Json& skin, std::size_t i) {
   const Json* joints = member(skin, "joints");
   if (!joints || !joints->is_array() || joints->empty())
     return fmt::format("skin {} has no joints (glTF requires a \"joints\" array of at least one node)", i);
+  if (!std::all_of(joints->begin(), joints->end(), [](const Json& n) { return n.is_number_integer(); }))
+    return fmt::format("skin {} has a joint that is not a node index", i);
   return std::nullopt;
 }
 
 // The first sampler of the animation without its input or output accessor, named once.
 Problem check_animation(const Json& animation, std::size_t i) {
+  const Json* channels = member(animation, "channels");
   const Json* samplers = member(animation, "samplers");
-  if (!samplers || !samplers->is_array()) return std::nullopt;
+  if (!channels || !channels->is_array() || channels->empty() || !samplers || !samplers->is_array() ||
+      samplers->empty())
+    return fmt::format("animation {} has no channels or no samplers (glTF requires at least one of each)", i);
+  for (std::size_t c = 0; c < channels->size(); ++c) {
+    const Json* target = member((*channels)[c], "target");
+    const Json* path = target ? member(*target, "path") : nullptr;
+    if (index_of((*channels)[c], "sampler") < 0 || !path || !path->is_string())
+      return fmt::format("animation {} channel {} has no {}", i, c,
+                         index_of((*channels)[c], "sampler") < 0 ? "sampler index" : "target path");
+  }
   std::size_t incomplete = 0, first = 0;
   for (std::size_t s = samplers->size(); s-- > 0;)
     if (index_of((*samplers)[s], "input") < 0 || index_of((*samplers)[s], "output") < 0) ++incomplete, first = s;
@@ -242,13 +331,27 @@ Problem check_animation(const Json& animation, std::size_t i) {
                      first, incomplete > 1 ? fmt::format(" (and {} more)", incomplete - 1) : "");
 }
 
-template <typename Check>
-Problem each(const Json& j, const char* key, Check check) {
-  const Json* a = member(j, key);
-  if (!a) return std::nullopt;
-  for (std::size_t i = 0; i < a->size(); ++i)
-    if (Problem p = check((*a)[i], i)) return p;
+Problem check_scene(const Json& scene, std::size_t i) {
+  const Json* nodes = member(scene, "nodes");
+  if (nodes && (!nodes->is_array() || nodes->empty()))
+    return fmt::format("scene {} has a \"nodes\" that is not an array of at least one node", i);
   return std::nullopt;
+}
+
+Problem check_light(const Json& light, std::size_t i) {
+  const Json* type = member(light, "type");
+  if (!type || !type->is_string()) return fmt::format("light {} has no type", i);
+  const Json* spot = member(light, "spot");
+  if (*type == "spot" && (!spot || !spot->is_object()))
+    return fmt::format("light {} is a spot light but has no \"spot\" object", i);
+  return std::nullopt;
+}
+
+const Json* lights_of(const Json& j) {
+  const Json* extensions = member(j, "extensions");
+  const Json* punctual = extensions ? member(*extensions, "KHR_lights_punctual") : nullptr;
+  const Json* lights = punctual ? member(*punctual, "lights") : nullptr;
+  return lights && lights->is_array() ? lights : nullptr;
 }
 
 // "line 27, column 5: syntax error ... invalid literal; last read: '0,<U+000A>    N'" names
@@ -313,23 +416,46 @@ std::string unreadable_reason(const std::string& path) {
   return "";
 }
 
+std::vector<GltfObjectProblem> find_object_problems(const nlohmann::json& j, const std::string& base_dir) {
+  std::vector<GltfObjectProblem> out;
+  auto check_all = [&](const char* key, const char* noun, const Json* array, const auto& check) {
+    if (!array || !array->is_array()) return;
+    for (std::size_t i = 0; i < array->size(); ++i) {
+      Problem p = (*array)[i].is_object() ? check((*array)[i], i) : fmt::format("{} {} is not a JSON object", noun, i);
+      if (p) out.push_back({key, i, fmt::format("{} {}", noun, i), std::move(*p)});
+    }
+  };
+  const std::size_t views = array_size(j, "bufferViews");
+  const auto none = [](const Json&, std::size_t) { return Problem(); };
+  for (const auto& [key, noun] : kArrays) {
+    const Json* array = member(j, key);
+    const std::string k = key;
+    if (k == "buffers") check_all(key, noun, array, [&](const Json& b, std::size_t i) { return check_buffer(b, i, base_dir); });
+    else if (k == "bufferViews") check_all(key, noun, array, [&](const Json& v, std::size_t i) { return check_buffer_view(v, i, j); });
+    else if (k == "accessors") check_all(key, noun, array, check_accessor);
+    else if (k == "meshes") check_all(key, noun, array, [&](const Json& m, std::size_t i) { return check_mesh(m, i, j); });
+    else if (k == "materials") check_all(key, noun, array, check_material);
+    else if (k == "images") check_all(key, noun, array, [&](const Json& im, std::size_t i) { return check_image(im, i, views); });
+    else if (k == "cameras") check_all(key, noun, array, check_camera);
+    else if (k == "skins") check_all(key, noun, array, check_skin);
+    else if (k == "animations") check_all(key, noun, array, check_animation);
+    else if (k == "scenes") check_all(key, noun, array, check_scene);
+    else if (k == "nodes") check_all(key, noun, array, check_node);
+    else check_all(key, noun, array, none);
+  }
+  check_all("lights", "light", lights_of(j), check_light);
+  return out;
+}
+
 std::optional<std::string> diagnose_gltf_json(const GltfDiagnoseInput& in) {
   const Json j = Json::parse(in.json.begin(), in.json.end(), nullptr, false);
   if (j.is_discarded()) return std::nullopt;
   if (!j.is_object()) return "is not glTF: its top-level JSON value is not an object";
   if (Problem p = check_asset(j)) return p;
   if (Problem p = check_arrays(j)) return p;
-  const std::size_t views = array_size(j, "bufferViews");
-  if (Problem p = each(j, "buffers", [&](const Json& b, std::size_t i) { return check_buffer(b, i, in); }))
-    return p;
-  if (Problem p = each(j, "bufferViews", check_buffer_view)) return p;
-  if (Problem p = each(j, "accessors", check_accessor)) return p;
-  if (Problem p = check_mesh_indices(j)) return p;
-  if (Problem p = each(j, "images", [&](const Json& im, std::size_t i) { return check_image(im, i, views); }))
-    return p;
-  if (Problem p = each(j, "skins", check_skin)) return p;
-  if (Problem p = each(j, "animations", check_animation)) return p;
-  return each(j, "cameras", check_camera);
+  const std::vector<GltfObjectProblem> problems = find_object_problems(j, in.base_dir);
+  if (!problems.empty()) return problems.front().text;
+  return std::nullopt;
 }
 
 std::string reword_tinygltf_error(const std::string& err, std::string_view json) {

@@ -7,6 +7,9 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
+
+#include <nlohmann/json.hpp>
 
 namespace tessera {
 
@@ -19,6 +22,20 @@ struct GltfDiagnoseInput {
 
 // One line without the file name, or nullopt when nothing specific is found.
 std::optional<std::string> diagnose_gltf_json(const GltfDiagnoseInput& in);
+
+// A problem confined to one object, which tinygltf would refuse the whole file for or read
+// as something else in silence (a texture reference without an index as none).
+struct GltfObjectProblem {
+  std::string array;  // where the object is: "buffers", "meshes", ..., "lights" (KHR_lights_punctual)
+  std::size_t index = 0;
+  std::string object;  // "buffer 1"
+  std::string text;  // "buffer 1 has no valid byteLength"
+};
+
+// Every object of `j` with such a problem, array by array. A buffer without a uri
+// is left to gltf_prepare.cpp (whether that is a problem depends on the container). External
+// files resolve against base_dir.
+std::vector<GltfObjectProblem> find_object_problems(const nlohmann::json& j, const std::string& base_dir);
 
 // tinygltf's (possibly multi-line) error text as one line, for when the diagnosis finds nothing.
 std::string reword_tinygltf_error(const std::string& err, std::string_view json);

@@ -19,10 +19,12 @@
 
 #include "scene_io/gltf_accessor.h"
 #include "scene_io/gltf_hierarchy.h"
+#include "scene_io/gltf_images.h"
 #include "scene_io/gltf_instancing.h"
 #include "scene_io/gltf_material.h"
 #include "scene_io/gltf_mesh.h"
 #include "scene_io/gltf_parse.h"
+#include "scene_io/gltf_usage.h"
 #include "scene_io/gltf_variants.h"
 #include "scene_io/load_error.h"
 
@@ -51,28 +53,75 @@ class Converter {
 
   void run(const GltfLoadParams& params) {
     check_extensions();
-    out_.materials = convert_materials(model_, file_, defects_, warnings_);
-    result_.material_variants = read_material_variants(model_, file_);
-    if (!params.variant.empty())
-      result_.material_variant = choose_material_variant(result_.material_variants, params.variant, file_);
     out_.images = convert_images(model_, file_);
     parent_ = check_node_hierarchy(model_, file_);
-    result_.animations = read_animations(model_, reader_, file_);
+    const std::vector<int> roots = scene_roots(model_, choose_scene(params.scene), parent_, file_);
+    result_.animations = animation_names(model_);
     result_.playing = choose_animations(result_.animations, params.animation, file_);
-    result_.skins = read_skins(model_, reader_, file_);
+    // What the scene does not use may be broken: a warning (docs/reliability.md).
+    const GltfUsage used = find_used_objects(model_, roots, parent_, result_.playing);
+    // The file's variant names are used when one is chosen or a used primitive maps variants.
+    result_.material_variants = defects_.read_object(
+        !params.variant.empty() || maps_variants(used), kMaterialsVariants, file_, warnings_,
+        [&] { return read_material_variants(model_, file_); }, std::vector<std::string>{});
+    if (!params.variant.empty())
+      result_.material_variant = choose_material_variant(result_.material_variants, params.variant, file_);
+    out_.materials = convert_materials(model_, file_, defects_, used.materials, warnings_);
+    for (std::size_t a = 0; a < model_.animations.size(); ++a)
+      result_.animations[a] = defects_.read_object(
+          used.animations[a], fmt::format("animation {}", a), file_, warnings_,
+          [&] { return read_animation(model_, a, reader_, file_); }, result_.animations[a]);
+    for (std::size_t s = 0; s < model_.skins.size(); ++s)
+      result_.skins.push_back(defects_.read_object(used.skins[s], fmt::format("skin {}", s), file_, warnings_,
+                                                   [&] { return read_skin(model_, s, reader_, file_); },
+                                                   Skin{skin_name(model_, s), {}, {}, -1}));
     pose_steps(params);
     out_.animated = std::any_of(result_.playing.begin(), result_.playing.end(),
                                 [&](int a) { return !result_.animations[a].channels.empty(); });
     for (const tinygltf::Mesh& m : model_.meshes)
       result_.morph_meshes += std::any_of(m.primitives.begin(), m.primitives.end(),
                                           [](const tinygltf::Primitive& p) { return !p.targets.empty(); });
-    traverse(scene_roots(model_, choose_scene(params.scene), parent_, file_));
+    traverse(roots);
+    check_unused_objects(used);
     for (std::string& w : defects_.unused_warnings()) warnings_.push_back(std::move(w));
     check_unread_accessors();
   }
 
  private:
   [[noreturn]] void fail(const std::string& problem) const { throw SceneLoadError(file_, problem); }
+
+  // True when a primitive of a used mesh has KHR_materials_variants mappings.
+  bool maps_variants(const GltfUsage& used) const {
+    for (std::size_t m = 0; m < model_.meshes.size(); ++m)
+      for (const tinygltf::Primitive& prim : model_.meshes[m].primitives)
+        if (used.meshes[m] && prim.extensions.count(kMaterialsVariants)) return true;
+    return false;
+  }
+
+  // The policy for meshes, cameras, lights and textures the scene does not use: each is read as a whole
+  // (a texture the used materials showed reads again without a problem), and what would refuse
+  // a used one is a warning.
+  void check_unused_objects(const GltfUsage& used) {
+    for (std::size_t m = 0; m < model_.meshes.size(); ++m)
+      if (!used.meshes[m])
+        defects_.read_object(false, fmt::format("mesh {}", m), file_, warnings_,
+                             [&] { return convert_mesh(static_cast<int>(m), Deformation{}); }, Mesh{});
+    for (std::size_t c = 0; c < model_.cameras.size(); ++c)
+      if (!used.cameras[c])
+        defects_.read_object(false, fmt::format("camera {}", c), file_, warnings_,
+                             [&] { return camera_projection(static_cast<int>(c)); }, Camera{});
+    for (std::size_t l = 0; l < model_.lights.size(); ++l)
+      if (!used.lights[l])
+        defects_.read_object(false, fmt::format("light {}", l), file_, warnings_,
+                             [&] { return light_properties(static_cast<int>(l)); }, PunctualLight{});
+    for (std::size_t t = 0; t < model_.textures.size(); ++t)
+      defects_.read_object(false, fmt::format("texture {}", t), file_, warnings_,
+                           [&] {
+                             texture_image(model_, file_, static_cast<int>(t), defects_);
+                             return texture_sampler(model_, file_, static_cast<int>(t), defects_);
+                           },
+                           static_cast<const tinygltf::Sampler*>(nullptr));
+  }
 
   // The policy for accessors nothing read: what would refuse a used one (NaN, a range past its
   // bufferView) is a warning. Read as a whole, without the reader's log.
@@ -84,7 +133,7 @@ class Converter {
       try {
         whole.floats(static_cast<int>(i), components, "unused");
       } catch (const SceneLoadError& e) {
-        warnings_.push_back("ignored, as the scene does not use it: " + e.problem());
+        warnings_.push_back(kUnusedPrefix + e.problem());
       }
     }
   }
@@ -163,6 +212,8 @@ class Converter {
     const auto& scenes = model_.scenes;
     if (scenes.empty()) {
       if (!wanted.empty()) fail(fmt::format("has no scenes, so scene '{}' cannot be chosen", wanted));
+      if (model_.defaultScene >= 0)
+        fail(fmt::format("its default scene is {}, but the file has no scenes", model_.defaultScene));
       return -1;
     }
     int index = model_.defaultScene >= 0 ? model_.defaultScene : 0;
@@ -184,6 +235,7 @@ class Converter {
       fail(fmt::format("its default scene is {}, but the file has {}", index,
                        count_of(scenes.size(), "scene")));
     }
+    defects_.check_used(fmt::format("scene {}", index), file_);
     out_.scene_name = scenes[index].name.empty() ? std::to_string(index) : scenes[index].name;
     return index;
   }
@@ -194,6 +246,7 @@ class Converter {
     while (!stack.empty()) {
       const int index = stack.back();
       stack.pop_back();
+      defects_.check_used(fmt::format("node {}", index), file_);
       const tinygltf::Node& node = model_.nodes[index];
       for (int k = 0; k < steps(); ++k) world(index, k);
       if (node.mesh >= 0) add_instance(node, index);
@@ -355,7 +408,6 @@ class Converter {
       if (prim->material >= static_cast<int>(out_.materials.size()))
         fail(fmt::format("{} refers to material {}, but the file has {}", what, prim->material,
                          count_of(out_.materials.size(), "material")));
-      if (prim->material >= 0) defects_.check_used(fmt::format("material {}", prim->material), file_);
       if (!prim->indices.empty()) mesh.primitives.push_back(std::move(*prim));
     }
     return mesh;
@@ -401,15 +453,22 @@ class Converter {
     if (node.camera >= static_cast<int>(model_.cameras.size()))
       fail(fmt::format("node {} refers to camera {}, but the file has {}", index, node.camera,
                        count_of(model_.cameras.size(), "camera")));
-    const tinygltf::Camera& src = model_.cameras[node.camera];
-    Camera cam;
-    cam.name = !src.name.empty() ? src.name : !node.name.empty() ? node.name
-                                                                 : fmt::format("camera {}", node.camera);
+    defects_.check_used(fmt::format("camera {}", node.camera), file_);
+    Camera cam = camera_projection(node.camera);
+    if (model_.cameras[node.camera].name.empty() && !node.name.empty()) cam.name = node.name;
     std::vector<glm::mat4> frames;
     for (const glm::mat4& w : worlds(index)) frames.push_back(camera_frame(w, index, node.camera));
     cam.camera_to_world = frames[0];
     if (std::any_of(frames.begin(), frames.end(), [&](const glm::mat4& m) { return m != frames[0]; }))
       cam.motion.assign(frames.begin() + 1, frames.end());
+    out_.cameras.push_back(cam);
+  }
+
+  // Camera `index`'s projection, checked; named by the file or "camera N".
+  Camera camera_projection(int index) const {
+    const tinygltf::Camera& src = model_.cameras[index];
+    Camera cam;
+    cam.name = !src.name.empty() ? src.name : fmt::format("camera {}", index);
     if (src.type == "orthographic") {
       cam.projection = Camera::Projection::Orthographic;
       cam.xmag = static_cast<float>(std::abs(src.orthographic.xmag));
@@ -417,7 +476,7 @@ class Converter {
       cam.znear = static_cast<float>(src.orthographic.znear);
       cam.zfar = static_cast<float>(src.orthographic.zfar);
       if (!(cam.xmag > 0 && cam.ymag > 0 && std::isfinite(cam.xmag) && std::isfinite(cam.ymag)))
-        fail(fmt::format("camera {} has invalid xmag/ymag", node.camera));
+        fail(fmt::format("camera {} has invalid xmag/ymag", index));
     } else if (src.type == "perspective") {
       cam.yfov = static_cast<float>(src.perspective.yfov);
       cam.aspect_ratio = static_cast<float>(src.perspective.aspectRatio);
@@ -425,13 +484,15 @@ class Converter {
       cam.zfar = static_cast<float>(src.perspective.zfar);
       if (!(cam.yfov > 0 && cam.yfov < 3.1415926f))
         fail(fmt::format("camera {} has yfov {}; a perspective camera needs 0 < yfov < pi radians",
-                         node.camera, src.perspective.yfov));
+                         index, src.perspective.yfov));
       if (!(cam.aspect_ratio >= 0 && std::isfinite(cam.aspect_ratio)))
-        fail(fmt::format("camera {} has an invalid aspectRatio", node.camera));
+        fail(fmt::format("camera {} has an invalid aspectRatio", index));
     } else {
-      fail(fmt::format("camera {} has unknown type '{}'", node.camera, src.type));
+      fail(fmt::format("camera {} has unknown type '{}'", index, src.type));
     }
-    out_.cameras.push_back(cam);
+    if (cam.zfar > 0 && !(cam.zfar > cam.znear))
+      fail(fmt::format("camera {} has zfar {} not beyond its znear {}", index, cam.zfar, cam.znear));
+    return cam;
   }
 
   // Cameras ignore the node's scale: an orthonormal frame and the position.
@@ -451,28 +512,41 @@ class Converter {
     if (light < 0 || light >= static_cast<int>(model_.lights.size()))
       fail(fmt::format("node {} refers to light {}, but the file has {}", index, light,
                        count_of(model_.lights.size(), "light")));
-    const tinygltf::Light& src = model_.lights[light];
-    PunctualLight l;
-    l.name = src.name.empty() ? fmt::format("light {}", light) : src.name;
-    if (src.type == "point") l.type = PunctualLight::Type::Point;
-    else if (src.type == "spot") l.type = PunctualLight::Type::Spot;
-    else if (src.type == "directional") l.type = PunctualLight::Type::Directional;
-    else fail(fmt::format("light {} has unknown type '{}' (expected 'directional', 'point' or 'spot')",
-                          light, src.type));
-    if (src.color.size() == 3) l.color = {src.color[0], src.color[1], src.color[2]};
-    l.intensity = static_cast<float>(src.intensity);
-    l.range = static_cast<float>(src.range);
-    l.inner_cone_angle = static_cast<float>(src.spot.innerConeAngle);
-    l.outer_cone_angle = static_cast<float>(src.spot.outerConeAngle);
+    defects_.check_used(fmt::format("light {}", light), file_);
+    PunctualLight l = light_properties(light);
     l.position = glm::vec3(world[3]);
     l.direction = glm::normalize(glm::vec3(world * glm::vec4(0, 0, -1, 0)));
     l.light_to_world = world;
-    bool finite = all_finite((l.color)) && std::isfinite(l.intensity) && l.intensity >= 0;
+    bool finite = true;
     for (const glm::mat4& w : placed) finite = finite && all_finite(glm::normalize(glm::vec3(w * glm::vec4(0, 0, -1, 0))));
     if (!finite) fail(fmt::format("light {} has an invalid color, intensity or direction", light));
     if (std::any_of(placed.begin(), placed.end(), [&](const glm::mat4& m) { return m != world; }))
       l.motion.assign(placed.begin() + 1, placed.end());
     out_.lights.push_back(l);
+  }
+
+  // Light `index` of KHR_lights_punctual as the file gives it, checked; not yet placed.
+  PunctualLight light_properties(int index) const {
+    const tinygltf::Light& src = model_.lights[index];
+    PunctualLight l;
+    l.name = src.name.empty() ? fmt::format("light {}", index) : src.name;
+    if (src.type == "point") l.type = PunctualLight::Type::Point;
+    else if (src.type == "spot") l.type = PunctualLight::Type::Spot;
+    else if (src.type == "directional") l.type = PunctualLight::Type::Directional;
+    else fail(fmt::format("light {} has unknown type '{}' (expected 'directional', 'point' or 'spot')",
+                          index, src.type));
+    if (src.color.size() == 3) l.color = {src.color[0], src.color[1], src.color[2]};
+    l.intensity = static_cast<float>(src.intensity);
+    l.range = static_cast<float>(src.range);
+    l.inner_cone_angle = static_cast<float>(src.spot.innerConeAngle);
+    l.outer_cone_angle = static_cast<float>(src.spot.outerConeAngle);
+    if (!(all_finite(l.color) && std::isfinite(l.intensity) && l.intensity >= 0))
+      fail(fmt::format("light {} has an invalid color, intensity or direction", index));
+    const double inner = src.spot.innerConeAngle, outer = src.spot.outerConeAngle;
+    if (l.type == PunctualLight::Type::Spot && !(inner >= 0 && inner < outer && outer <= glm::half_pi<double>()))
+      fail(fmt::format("light {} has spot cone angles {} (inner) and {} (outer); glTF requires 0 <= inner < outer "
+                       "<= pi/2", index, inner, outer));
+    return l;
   }
 
   const tinygltf::Model& model_;

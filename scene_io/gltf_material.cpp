@@ -37,7 +37,7 @@ TextureRef texture_ref(const tinygltf::Model& model, const std::string& file, co
   if (index >= static_cast<int>(model.textures.size()))
     throw SceneLoadError(file, fmt::format("{} refers to texture {}, but the file has {}", what,
                                            index, count_of(model.textures.size(), "texture")));
-  const tinygltf::Texture& tex = model.textures[index];
+  defects.check_used(fmt::format("texture {}", index), file);
   const int source = texture_image(model, file, index, defects);
   if (source < 0) {
     warnings.push_back(fmt::format("texture {} has no image tessera can decode; ignored", index));
@@ -45,14 +45,10 @@ TextureRef texture_ref(const tinygltf::Model& model, const std::string& file, co
   }
   ref.image = source;
   ref.texcoord = texcoord;
-  if (tex.sampler >= static_cast<int>(model.samplers.size()))
-    throw SceneLoadError(file, fmt::format("texture {} refers to sampler {}, but the file has {}",
-                                           index, tex.sampler, count_of(model.samplers.size(), "sampler")));
-  if (tex.sampler >= 0) {
-    const tinygltf::Sampler& s = model.samplers[tex.sampler];
-    ref.wrap_s = wrap_mode(s.wrapS);
-    ref.wrap_t = wrap_mode(s.wrapT);
-    if (s.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST) ref.filter = FilterMode::Nearest;
+  if (const tinygltf::Sampler* s = texture_sampler(model, file, index, defects)) {
+    ref.wrap_s = wrap_mode(s->wrapS);
+    ref.wrap_t = wrap_mode(s->wrapT);
+    if (s->magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST) ref.filter = FilterMode::Nearest;
   }
   if (auto it = extensions.find("KHR_texture_transform"); it != extensions.end()) {
     const tinygltf::Value& t = it->second;
@@ -69,53 +65,71 @@ TextureRef texture_ref(const tinygltf::Model& model, const std::string& file, co
   return ref;
 }
 
+Material convert_material(const tinygltf::Model& model, std::size_t i, const std::string& file,
+                          const GltfDefects& defects, std::vector<std::string>& warnings) {
+  const tinygltf::Material& m = model.materials[i];
+  const std::string what = fmt::format("material {}", i);
+  auto ref = [&](const tinygltf::TextureInfo& t, const char* slot) {
+    return texture_ref(model, file, defects, t.index, t.texCoord, t.extensions, what + " " + slot, warnings);
+  };
+  Material mat;
+  mat.name = m.name;
+  const auto& pbr = m.pbrMetallicRoughness;
+  if (pbr.baseColorFactor.size() == 4)
+    mat.base_color_factor = {pbr.baseColorFactor[0], pbr.baseColorFactor[1],
+                             pbr.baseColorFactor[2], pbr.baseColorFactor[3]};
+  mat.base_color_texture = ref(pbr.baseColorTexture, "baseColorTexture");
+  mat.metallic_factor = static_cast<float>(pbr.metallicFactor);
+  mat.roughness_factor = static_cast<float>(pbr.roughnessFactor);
+  mat.metallic_roughness_texture = ref(pbr.metallicRoughnessTexture, "metallicRoughnessTexture");
+  mat.normal_texture = texture_ref(model, file, defects, m.normalTexture.index, m.normalTexture.texCoord,
+                                   m.normalTexture.extensions, what + " normalTexture", warnings);
+  mat.normal_scale = static_cast<float>(m.normalTexture.scale);
+  if (m.emissiveFactor.size() == 3)
+    mat.emissive_factor = {m.emissiveFactor[0], m.emissiveFactor[1], m.emissiveFactor[2]};
+  mat.emissive_texture = ref(m.emissiveTexture, "emissiveTexture");
+  if (auto it = m.extensions.find("KHR_materials_emissive_strength"); it != m.extensions.end())
+    mat.emissive_strength = static_cast<float>(number_of(it->second, "emissiveStrength", 1.0));
+  mat.alpha_mode = m.alphaMode == "MASK"    ? AlphaMode::Mask
+                   : m.alphaMode == "BLEND" ? AlphaMode::Blend
+                                            : AlphaMode::Opaque;
+  mat.alpha_cutoff = static_cast<float>(m.alphaCutoff);
+  mat.double_sided = m.doubleSided;
+  read_material_extensions(
+      m,
+      [&](int index, int texcoord, const tinygltf::ExtensionMap& ext, const std::string& slot) {
+        return texture_ref(model, file, defects, index, texcoord, ext, what + " " + slot, warnings);
+      },
+      [&](const std::string& problem) { throw SceneLoadError(file, what + ": " + problem); }, mat);
+  const bool finite = all_finite((mat.base_color_factor)) &&
+                      all_finite((mat.emissive_factor)) &&
+                      std::isfinite(mat.emissive_strength) && std::isfinite(mat.metallic_factor) &&
+                      std::isfinite(mat.roughness_factor);
+  if (!finite) throw SceneLoadError(file, what + " has a non-finite factor");
+  return mat;
+}
+
 }  // namespace
 
+const tinygltf::Sampler* texture_sampler(const tinygltf::Model& model, const std::string& file, int index,
+                                         const GltfDefects& defects) {
+  const int sampler = model.textures[index].sampler;
+  if (sampler >= static_cast<int>(model.samplers.size()))
+    throw SceneLoadError(file, fmt::format("texture {} refers to sampler {}, but the file has {}", index, sampler,
+                                           count_of(model.samplers.size(), "sampler")));
+  if (sampler < 0) return nullptr;
+  defects.check_used(fmt::format("sampler {}", sampler), file);
+  return &model.samplers[sampler];
+}
+
 std::vector<Material> convert_materials(const tinygltf::Model& model, const std::string& file,
-                                        const GltfDefects& defects, std::vector<std::string>& warnings) {
+                                        const GltfDefects& defects, const std::vector<bool>& used,
+                                        std::vector<std::string>& warnings) {
   std::vector<Material> out;
-  for (std::size_t i = 0; i < model.materials.size(); ++i) {
-    const tinygltf::Material& m = model.materials[i];
-    const std::string what = fmt::format("material {}", i);
-    auto ref = [&](const tinygltf::TextureInfo& t, const char* slot) {
-      return texture_ref(model, file, defects, t.index, t.texCoord, t.extensions, what + " " + slot, warnings);
-    };
-    Material mat;
-    mat.name = m.name;
-    const auto& pbr = m.pbrMetallicRoughness;
-    if (pbr.baseColorFactor.size() == 4)
-      mat.base_color_factor = {pbr.baseColorFactor[0], pbr.baseColorFactor[1],
-                               pbr.baseColorFactor[2], pbr.baseColorFactor[3]};
-    mat.base_color_texture = ref(pbr.baseColorTexture, "baseColorTexture");
-    mat.metallic_factor = static_cast<float>(pbr.metallicFactor);
-    mat.roughness_factor = static_cast<float>(pbr.roughnessFactor);
-    mat.metallic_roughness_texture = ref(pbr.metallicRoughnessTexture, "metallicRoughnessTexture");
-    mat.normal_texture = texture_ref(model, file, defects, m.normalTexture.index, m.normalTexture.texCoord,
-                                     m.normalTexture.extensions, what + " normalTexture", warnings);
-    mat.normal_scale = static_cast<float>(m.normalTexture.scale);
-    if (m.emissiveFactor.size() == 3)
-      mat.emissive_factor = {m.emissiveFactor[0], m.emissiveFactor[1], m.emissiveFactor[2]};
-    mat.emissive_texture = ref(m.emissiveTexture, "emissiveTexture");
-    if (auto it = m.extensions.find("KHR_materials_emissive_strength"); it != m.extensions.end())
-      mat.emissive_strength = static_cast<float>(number_of(it->second, "emissiveStrength", 1.0));
-    mat.alpha_mode = m.alphaMode == "MASK"    ? AlphaMode::Mask
-                     : m.alphaMode == "BLEND" ? AlphaMode::Blend
-                                              : AlphaMode::Opaque;
-    mat.alpha_cutoff = static_cast<float>(m.alphaCutoff);
-    mat.double_sided = m.doubleSided;
-    read_material_extensions(
-        m,
-        [&](int index, int texcoord, const tinygltf::ExtensionMap& ext, const std::string& slot) {
-          return texture_ref(model, file, defects, index, texcoord, ext, what + " " + slot, warnings);
-        },
-        [&](const std::string& problem) { throw SceneLoadError(file, what + ": " + problem); }, mat);
-    const bool finite = all_finite((mat.base_color_factor)) &&
-                        all_finite((mat.emissive_factor)) &&
-                        std::isfinite(mat.emissive_strength) && std::isfinite(mat.metallic_factor) &&
-                        std::isfinite(mat.roughness_factor);
-    if (!finite) throw SceneLoadError(file, what + " has a non-finite factor");
-    out.push_back(std::move(mat));
-  }
+  for (std::size_t i = 0; i < model.materials.size(); ++i)
+    out.push_back(defects.read_object(used[i], fmt::format("material {}", i), file, warnings,
+                                      [&] { return convert_material(model, i, file, defects, warnings); },
+                                      Material{}));
   return out;
 }
 

@@ -90,7 +90,7 @@ tinygltf::Model parse_gltf(const std::vector<std::uint8_t>& bytes, const std::st
     throw SceneLoadError(name, "is larger than 4 GiB, more than tinygltf can read");
   // Compressed files: tinygltf reads a rewritten JSON (gltf_prepare.h), in a rebuilt .glb.
   const std::optional<std::string> prepared =
-      prepare_gltf_json(container.json, name, {container.binary, container.bin_chunk_size}, defects);
+      prepare_gltf_json(container.json, name, {container.binary, container.bin_chunk_size, base_dir}, defects);
   std::vector<std::uint8_t> rebuilt;
   if (prepared) {
     rebuilt = container.binary ? replace_glb_json(bytes, *prepared)

@@ -5,8 +5,11 @@
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
+#include <tiny_gltf.h>
 
+#include "scene_io/gltf_data_uri.h"
 #include "scene_io/gltf_defects.h"
+#include "scene_io/gltf_diagnose.h"
 #include "scene_io/gltf_extensions.h"
 #include "scene_io/load_error.h"
 
@@ -141,24 +144,27 @@ bool replace_images_past_their_buffers(Json& j, GltfDefects& defects) {
   return changed;
 }
 
-// Accessors tinygltf would refuse for their type become one float zero. (It reads any
-// componentType; AccessorReader refuses a wrong one when the accessor is read.)
-bool replace_unknown_accessors(Json& j, GltfDefects& defects) {
-  static const char* kTypes[] = {"SCALAR", "VEC2", "VEC3", "VEC4", "MAT2", "MAT3", "MAT4"};
-  Json* accessors = j.contains("accessors") ? &j["accessors"] : nullptr;
-  if (!accessors || !accessors->is_array()) return false;
+// Data URIs tinygltf cannot decode although RFC 2397 allows them (percent-encoded data, not
+// base64; percent escapes in base64; parameters in the header) are handed to it as plain base64.
+// Those that cannot be decoded at all were replaced above.
+bool reencode_data_uris(Json& j) {
   bool changed = false;
-  for (std::size_t i = 0; i < accessors->size(); ++i) {
-    Json& a = (*accessors)[i];
-    const Json* type = member(a, "type");
-    std::string problem;
-    if (type && type->is_string() &&
-        std::none_of(std::begin(kTypes), std::end(kTypes), [&](const char* t) { return *type == t; }))
-      problem = fmt::format("accessor {} has unknown type '{}'", i, type->get<std::string>().substr(0, 40));
-    if (problem.empty()) continue;
-    defects.add(fmt::format("accessor {}", i), problem);
-    a = Json{{"componentType", 5126}, {"type", "SCALAR"}, {"count", 1}};
-    changed = true;
+  for (const char* array : {"buffers", "images"}) {
+    Json* objects = j.contains(array) ? &j[array] : nullptr;
+    if (!objects || !objects->is_array()) continue;
+    for (Json& object : *objects) {
+      const Json* uri = member(object, "uri");
+      if (!uri || !uri->is_string() || !is_data_uri(uri->get<std::string>())) continue;
+      const std::string& text = uri->get_ref<const std::string&>();
+      const std::size_t comma = text.find(',');
+      const bool plain = comma != std::string::npos && text.find('%') == std::string::npos &&
+                         (tinygltf::IsDataURI(text.substr(0, comma + 1)) || text.rfind("data:image/webp;base64,", 0) == 0);
+      std::string problem;
+      const std::optional<DataUri> data = plain ? std::nullopt : decode_data_uri(text, problem);
+      if (!data) continue;
+      object["uri"] = encode_data_uri(data->media_type, data->bytes);
+      changed = true;
+    }
   }
   return changed;
 }
@@ -185,35 +191,61 @@ bool hand_over_viewless_indices(Json& j) {
   return changed;
 }
 
-// Mistakes tinygltf passes over in silence: a mesh without a primitives array (tinygltf reads
-// it as a mesh without primitives), a texture reference of a negative index (read as none).
-void flag_silent_mistakes(const Json& j, GltfDefects& defects) {
-  if (const Json* meshes = member(j, "meshes"); meshes && meshes->is_array())
-    for (std::size_t m = 0; m < meshes->size(); ++m) {
-      const Json* prims = member((*meshes)[m], "primitives");
-      if (!prims || !prims->is_array() || prims->empty())
-        defects.add(fmt::format("mesh {}", m),
-                    fmt::format("mesh {} has {}; glTF requires an array of at least one primitive", m,
-                                !prims ? "no \"primitives\"" : prims->is_array() ? "an empty \"primitives\" array"
-                                                                 : "a \"primitives\" that is not an array"));
+// The placeholder an object with a problem becomes: what tinygltf reads without complaint and
+// conversion never reads (it asks GltfDefects first). A buffer's 4 bytes are emptied again by
+// gltf_parse.cpp; an image's 3 bytes decode as no image.
+Json placeholder(const std::string& array, const Json& original) {
+  if (array == "buffers") return Json{{"byteLength", 4}, {"uri", "data:application/octet-stream;base64,AAAAAA=="}};
+  if (array == "bufferViews") return Json{{"buffer", 0}, {"byteLength", 0}};
+  if (array == "accessors") return Json{{"componentType", 5126}, {"type", "SCALAR"}, {"count", 1}};
+  if (array == "meshes") return Json{{"primitives", Json::array()}};
+  if (array == "images") return Json{{"uri", "data:image/png;base64,AAAA"}};
+  if (array == "cameras") return Json{{"type", "perspective"}, {"perspective", {{"yfov", 1}, {"znear", 1}}}};
+  if (array == "skins") return Json{{"joints", Json::array()}};
+  if (array == "lights") return Json{{"type", "point"}};
+  if (array == "scenes") return Json{{"nodes", Json::array()}};
+  if (array != "animations") return Json::object();
+  // An animation keeps the nodes its channels target: whether it is used depends on them.
+  Json channels = Json::array();
+  const Json* original_channels = member(original, "channels");
+  if (original_channels && original_channels->is_array())
+    for (const Json& c : *original_channels) {
+      const Json* target = member(c, "target");
+      const Json* node = target ? member(*target, "node") : nullptr;
+      if (node && node->is_number_integer())
+        channels.push_back({{"sampler", 0}, {"target", {{"node", *node}, {"path", "translation"}}}});
     }
-  const Json* materials = member(j, "materials");
-  if (!materials || !materials->is_array()) return;
-  for (std::size_t m = 0; m < materials->size(); ++m) {
-    std::vector<std::pair<std::string, const Json*>> stack = {{"", &(*materials)[m]}};
-    while (!stack.empty()) {  // every textureInfo, in the core material and its extensions
-      const auto [key, object] = stack.back();
-      stack.pop_back();
-      if (!object->is_object()) continue;
-      const Json* index = member(*object, "index");
-      if (index && index->is_number_integer() && index->get<std::int64_t>() < 0) {
-        defects.add(fmt::format("material {}", m), fmt::format("material {} has {} index {}, which names no texture", m,
-                                                               key, index->get<std::int64_t>()));
-        break;
-      }
-      for (auto it = object->begin(); it != object->end(); ++it) stack.emplace_back(it.key(), &*it);
-    }
+  return Json{{"channels", channels}, {"samplers", Json::array()}};
+}
+
+Json* object_array(Json& j, const std::string& array) {
+  if (array != "lights") return j.contains(array) ? &j[array] : nullptr;
+  return &j["extensions"]["KHR_lights_punctual"]["lights"];
+}
+
+// Objects tinygltf would refuse the file for, or misread in silence (gltf_diagnose.h), become
+// placeholders with their problem in `defects`; so do images in a bufferView that did.
+bool replace_unreadable_objects(Json& j, const GltfJsonContext& context, GltfDefects& defects) {
+  const std::vector<GltfObjectProblem> problems = find_object_problems(j, context.base_dir);
+  for (const GltfObjectProblem& p : problems) {
+    defects.add(p.object, p.text);
+    Json& object = (*object_array(j, p.array))[p.index];
+    if (p.array == "nodes" && object.is_object()) continue;  // tinygltf reads it; its children stay its own
+    object = placeholder(p.array, object);
   }
+  Json* images = j.contains("images") ? &j["images"] : nullptr;
+  if (!images || !images->is_array()) return !problems.empty();
+  for (std::size_t i = 0; i < images->size(); ++i) {
+    const Json* view = member((*images)[i], "bufferView");
+    if (!view || !view->is_number_unsigned()) continue;
+    const std::string view_object = fmt::format("bufferView {}", view->get<std::uint64_t>());
+    auto it = defects.problems.find(view_object);
+    if (it == defects.problems.end()) continue;
+    defects.add(fmt::format("image {}", i), fmt::format("image {} is in {}, which tessera cannot read: {}", i,
+                                                        view_object, it->second.text));
+    (*images)[i] = placeholder("images", (*images)[i]);
+  }
+  return true;
 }
 
 }  // namespace
@@ -226,11 +258,13 @@ std::optional<std::string> prepare_gltf_json(std::string_view json, const std::s
   bool changed = false;
   if (json.find("EXT_meshopt_compression") != std::string_view::npos) changed |= fill_fallback_buffers(j);
   if (json.find("KHR_draco_mesh_compression") != std::string_view::npos) changed |= point_draco_indices(j);
+  if (const Json* ext = extension(j, "KHR_lights_punctual"); ext && !(member(*ext, "lights") && (*ext)["lights"].is_array()))
+    defects.notes.push_back("its KHR_lights_punctual extension has no \"lights\" array");
+  changed |= replace_unreadable_objects(j, context, defects);  // first: a buffer {} lacks its byteLength too
   changed |= replace_dataless_buffers(j, context, defects);
+  changed |= reencode_data_uris(j);
   changed |= replace_images_past_their_buffers(j, defects);
-  changed |= replace_unknown_accessors(j, defects);
   changed |= hand_over_viewless_indices(j);
-  flag_silent_mistakes(j, defects);
   if (!changed) return std::nullopt;
   return j.dump();
 }

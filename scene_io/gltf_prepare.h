@@ -6,9 +6,11 @@
 //   in the Draco stream) points at the Draco bufferView until gltf_draco.cpp replaces it;
 // - objects that tinygltf would refuse although the file may not use them (docs/reliability.md)
 //   become placeholders, their problem recorded in GltfDefects: a buffer without data (no uri
-//   in a .gltf, or other than buffer 0 in a .glb, or larger than the BIN chunk), an accessor of
-//   an unknown type or componentType; and an indices accessor without a bufferView (allowed:
-//   its indices are zeros, bar sparse ones) is handed over as kIndicesWithoutView.
+//   in a .gltf, or other than buffer 0 in a .glb, or larger than the BIN chunk), and every
+//   object gltf_diagnose.h's find_object_problems names (an accessor of an unknown type, a
+//   skin without joints, a camera without its numbers, ...); and an indices accessor without a
+//   bufferView (allowed: its indices are zeros, bar sparse ones) is handed over as
+//   kIndicesWithoutView.
 #pragma once
 
 #include <cstdint>
@@ -24,10 +26,12 @@ struct GltfDefects;
 // {"accessor": index}, which tinygltf refuses as `indices`; gltf_parse.cpp moves it back.
 inline constexpr const char* kIndicesWithoutView = "TESSERA_indices_without_bufferView";
 
-// What the JSON sits in: a .glb's BIN chunk size matters to buffer 0.
+// What the JSON sits in: a .glb's BIN chunk size matters to buffer 0; external files resolve
+// against base_dir.
 struct GltfJsonContext {
   bool binary = false;
   std::size_t bin_chunk_size = 0;
+  std::string base_dir{};
 };
 
 // Throws SceneLoadError(display_name, ...) for an unsupported required extension. Returns

@@ -7,37 +7,60 @@
 
 namespace tessera {
 
-std::vector<Skin> read_skins(const tinygltf::Model& model, const AccessorReader& reader, const std::string& file) {
-  const int nodes = static_cast<int>(model.nodes.size());
-  std::vector<Skin> skins;
-  for (std::size_t s = 0; s < model.skins.size(); ++s) {
-    const tinygltf::Skin& src = model.skins[s];
-    Skin skin;
-    skin.name = src.name.empty() ? fmt::format("skin {}", s) : src.name;
-    if (src.joints.empty()) throw SceneLoadError(file, fmt::format("skin {} has no joints", s));
-    for (int j : src.joints)
-      if (j < 0 || j >= nodes)
-        throw SceneLoadError(file, fmt::format("skin {} has joint node {}, but the file has {}", s, j,
-                                               count_of(model.nodes.size(), "node")));
-    if (src.skeleton >= nodes)
-      throw SceneLoadError(file, fmt::format("skin {} has skeleton node {}, but the file has {}", s, src.skeleton,
-                                             count_of(model.nodes.size(), "node")));
-    skin.joints = src.joints;
-    skin.skeleton = src.skeleton;
-    skin.inverse_bind.assign(src.joints.size(), glm::mat4(1.0f));
-    if (src.inverseBindMatrices >= 0) {
-      const std::string what = fmt::format("inverseBindMatrices of skin {}", s);
-      if (reader.accessor(src.inverseBindMatrices, what).type != TINYGLTF_TYPE_MAT4)
-        throw SceneLoadError(file, fmt::format("accessor {} ({}) is not MAT4", src.inverseBindMatrices, what));
-      const std::vector<float> m = reader.floats(src.inverseBindMatrices, 16, what);
-      if (m.size() != 16 * src.joints.size())
-        throw SceneLoadError(file, fmt::format("accessor {} ({}) has {} matrices for {}", src.inverseBindMatrices,
-                                               what, m.size() / 16, count_of(src.joints.size(), "joint")));
-      for (std::size_t j = 0; j < src.joints.size(); ++j) skin.inverse_bind[j] = glm::make_mat4(&m[16 * j]);
-    }
-    skins.push_back(std::move(skin));
+namespace {
+
+// True when `node` is `ancestor` or below it (the hierarchy has been checked: a forest).
+bool is_ancestor_or_self(const tinygltf::Model& model, int ancestor, int node) {
+  std::vector<int> stack = {ancestor};
+  while (!stack.empty()) {
+    const int n = stack.back();
+    stack.pop_back();
+    if (n == node) return true;
+    if (n >= 0 && n < static_cast<int>(model.nodes.size()))
+      stack.insert(stack.end(), model.nodes[n].children.begin(), model.nodes[n].children.end());
   }
-  return skins;
+  return false;
+}
+
+}  // namespace
+
+std::string skin_name(const tinygltf::Model& model, std::size_t index) {
+  const std::string& name = model.skins[index].name;
+  return name.empty() ? fmt::format("skin {}", index) : name;
+}
+
+Skin read_skin(const tinygltf::Model& model, std::size_t s, const AccessorReader& reader, const std::string& file) {
+  const int nodes = static_cast<int>(model.nodes.size());
+  const tinygltf::Skin& src = model.skins[s];
+  Skin skin;
+  skin.name = skin_name(model, s);
+  if (src.joints.empty()) throw SceneLoadError(file, fmt::format("skin {} has no joints", s));
+  for (int j : src.joints)
+    if (j < 0 || j >= nodes)
+      throw SceneLoadError(file, fmt::format("skin {} has joint node {}, but the file has {}", s, j,
+                                             count_of(model.nodes.size(), "node")));
+  if (src.skeleton >= nodes)
+    throw SceneLoadError(file, fmt::format("skin {} has skeleton node {}, but the file has {}", s, src.skeleton,
+                                           count_of(model.nodes.size(), "node")));
+  if (src.skeleton >= 0)
+    for (int j : src.joints)
+      if (!is_ancestor_or_self(model, src.skeleton, j))
+        throw SceneLoadError(file, fmt::format("skin {} has skeleton node {}, which is not an ancestor of its joint "
+                                               "node {}", s, src.skeleton, j));
+  skin.joints = src.joints;
+  skin.skeleton = src.skeleton;
+  skin.inverse_bind.assign(src.joints.size(), glm::mat4(1.0f));
+  if (src.inverseBindMatrices >= 0) {
+    const std::string what = fmt::format("inverseBindMatrices of skin {}", s);
+    if (reader.accessor(src.inverseBindMatrices, what).type != TINYGLTF_TYPE_MAT4)
+      throw SceneLoadError(file, fmt::format("accessor {} ({}) is not MAT4", src.inverseBindMatrices, what));
+    const std::vector<float> m = reader.floats(src.inverseBindMatrices, 16, what);
+    if (m.size() != 16 * src.joints.size())
+      throw SceneLoadError(file, fmt::format("accessor {} ({}) has {} matrices for {}", src.inverseBindMatrices,
+                                             what, m.size() / 16, count_of(src.joints.size(), "joint")));
+    for (std::size_t j = 0; j < src.joints.size(); ++j) skin.inverse_bind[j] = glm::make_mat4(&m[16 * j]);
+  }
+  return skin;
 }
 
 SkinInfluences read_skin_influences(const AccessorReader& reader, const tinygltf::Primitive& prim,

@@ -23,9 +23,12 @@ struct Skin {
   int skeleton = -1;  // the common root of the joints' hierarchy, when the file names it
 };
 
-// Every skin of the file. Throws SceneLoadError for joints or a skeleton that are not nodes,
-// or inverse bind matrices that are not one MAT4 per joint.
-std::vector<Skin> read_skins(const tinygltf::Model& model, const AccessorReader& reader, const std::string& file);
+// Skin `index` of the file. Throws SceneLoadError for no joints, joints or a skeleton that are
+// not nodes, or inverse bind matrices that are not one MAT4 per joint.
+Skin read_skin(const tinygltf::Model& model, std::size_t index, const AccessorReader& reader, const std::string& file);
+
+// "skin 2", or the skin's name.
+std::string skin_name(const tinygltf::Model& model, std::size_t index);
 
 // Which joints move a primitive's vertices, and how much: every JOINTS_n/WEIGHTS_n set,
 // `per_vertex` = 4 x the number of sets entries per vertex.

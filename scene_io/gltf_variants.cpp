@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdint>
 #include <optional>
 
 #include <fmt/format.h>
@@ -115,6 +116,18 @@ int material_for_variant(const tinygltf::Primitive& prim, int variant, std::size
     }
   }
   return material;
+}
+
+std::vector<int> mapped_materials(const tinygltf::Primitive& prim) {
+  std::vector<int> out;
+  const std::optional<Json> ext = extension_json(prim.extensions, prim.extensions_json_string);
+  const Json* mappings = ext ? member(*ext, "mappings") : nullptr;
+  if (!mappings || !mappings->is_array()) return out;
+  for (const Json& mapping : *mappings)
+    if (const Json* mat = member(mapping, "material"); mat && mat->is_number_unsigned() &&
+                                                       mat->get<std::uint64_t>() < static_cast<std::uint64_t>(INT32_MAX))
+      out.push_back(static_cast<int>(mat->get<std::uint64_t>()));
+  return out;
 }
 
 }  // namespace tessera

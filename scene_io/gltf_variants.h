@@ -30,4 +30,7 @@ int choose_material_variant(const std::vector<std::string>& names, const std::st
 int material_for_variant(const tinygltf::Primitive& prim, int variant, std::size_t variant_count,
                          std::size_t material_count, const std::string& file, const std::string& what);
 
+// Every material index a mapping of `prim` gives, unchecked (what is not an index is left out).
+std::vector<int> mapped_materials(const tinygltf::Primitive& prim);
+
 }  // namespace tessera

@@ -4,10 +4,12 @@
 // counterparts, which the policy refuses, are in tests/data/malformed/.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
 #include "scene_io/gltf_loader.h"
+#include "scene_io/load_error.h"
 #include "tests/test_support.h"
 
 namespace tessera {
@@ -54,9 +56,9 @@ TEST(GltfConformance, UnusedObjectsOfEveryKindLoadInvalidOnesWithAWarning) {
   const GltfLoadResult r = load("unused_objects.gltf");
   EXPECT_EQ(triangles(r.scene), 1u);  // scene 0 places mesh 0 once; scene 1, mesh 1 unused
   EXPECT_EQ(r.warnings, (std::vector<std::string>{
-                            "ignored, as the scene does not use it: accessor 1 has unknown type 'VEC5'",
                             "ignored, as the scene does not use it: image 0 (bufferView 2) could not be decoded: "
-                            "it is not a PNG, JPEG or WebP image"}));
+                            "it is not a PNG, JPEG or WebP image",
+                            "ignored, as the scene does not use it: accessor 1 has unknown type 'VEC5'"}));
 }
 
 TEST(GltfConformance, InvalidObjectsTheSceneDoesNotUseAreWarnings) {
@@ -72,6 +74,108 @@ TEST(GltfConformance, InvalidObjectsTheSceneDoesNotUseAreWarnings) {
                             "ignored, as the scene does not use it: mesh 1 has a \"primitives\" that is not an array; "
                             "glTF requires an array of at least one primitive",
                             "ignored, as the scene does not use it: accessor 1 (unused) holds NaN at element 0"}));
+}
+
+// One file, seven scenes: scene 0 uses nothing broken; each other scene uses one broken object.
+// Validator (2.0.0-dev.3.10): 11 errors, among them UNRESOLVED_REFERENCE (material 1's texture),
+// ARRAY_LENGTH_NOT_IN_LIST (material 2's emissiveFactor, reached only through a
+// KHR_materials_variants mapping), UNDEFINED_PROPERTY (skin 0's joints, camera 0's yfov, light
+// 0's spot, animation 0's sampler input and output, accessor 1's componentType, bufferView 1's
+// byteLength). tinygltf refused all but the first for the whole file.
+const char* kChosenScene = "unused_by_the_chosen_scene.gltf";
+
+GltfLoadResult load_scene(const std::string& scene, const std::string& animation = "") {
+  GltfLoadParams params{scene};
+  params.animation = animation;
+  return load_gltf(test::data_path(std::string("conformance/") + kChosenScene), params);
+}
+
+TEST(GltfConformance, BrokenObjectsTheChosenSceneDoesNotUseAreWarnings) {
+  const GltfLoadResult r = load_scene("");
+  EXPECT_EQ(r.scene.scene_name, "good");
+  EXPECT_EQ(triangles(r.scene), 1u);
+  const std::string ignored = "ignored, as the scene does not use it: ";
+  EXPECT_EQ(r.warnings, (std::vector<std::string>{
+                            ignored + "material 1 baseColorTexture refers to texture 9, but the file has no textures",
+                            ignored + "accessor 1 has no valid componentType",
+                            ignored + "animation 0 sampler 0 has no valid input and output accessors (glTF requires "
+                                      "both)",
+                            ignored + "bufferView 1 has no valid byteLength",
+                            ignored + "camera 0 has no yfov number",
+                            ignored + "light 0 is a spot light but has no \"spot\" object",
+                            ignored + "material 2 has an emissiveFactor that is not 3 numbers",
+                            ignored + "skin 0 has no joints (glTF requires a \"joints\" array of at least one node)"}));
+}
+
+TEST(GltfConformance, TheSameObjectsRefuseTheFileWhenTheChosenSceneUsesThem) {
+  const std::pair<std::string, std::string> cases[] = {
+      {"material", "material 1 baseColorTexture refers to texture 9, but the file has no textures"},
+      {"skin", "skin 0 has no joints (glTF requires a \"joints\" array of at least one node)"},
+      {"camera", "camera 0 has no yfov number"},
+      {"light", "light 0 is a spot light but has no \"spot\" object"},
+      {"animation", "animation 0 sampler 0 has no valid input and output accessors (glTF requires both)"},
+      // Whichever variant is chosen (none here): every mapped material can be.
+      {"variant", "material 2 has an emissiveFactor that is not 3 numbers"}};
+  for (const auto& [scene, problem] : cases) {
+    try {
+      load_scene(scene);
+      ADD_FAILURE() << "scene " << scene << " loaded";
+    } catch (const SceneLoadError& e) {
+      EXPECT_EQ(e.problem(), problem) << "scene " << scene;
+    }
+  }
+}
+
+TEST(GltfConformance, AnAnimationThatDoesNotPlayIsNotUsed) {
+  const GltfLoadResult r = load_scene("animation", "none");  // its channel targets node 5, in the scene
+  EXPECT_EQ(triangles(r.scene), 1u);
+  EXPECT_NE(std::find(r.warnings.begin(), r.warnings.end(),
+                      "ignored, as the scene does not use it: animation 0 sampler 0 has no valid input and output "
+                      "accessors (glTF requires both)"),
+            r.warnings.end());
+}
+
+TEST(GltfConformance, PercentEncodedDataUrisAreDecoded) {
+  // RFC 2397: buffer 0 holds the triangle percent-encoded ("%00%00...%80%3F"), buffer 1 the same
+  // in base64 whose first three characters are escaped ("%41%41%41AAA..."). Validator: valid.
+  const GltfLoadResult r = load("percent_encoded_data_uris.gltf");
+  const Mesh& mesh = r.scene.meshes.at(0);
+  ASSERT_EQ(mesh.primitives.size(), 2u);
+  const std::vector<glm::vec3> triangle = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  EXPECT_EQ(mesh.primitives[0].positions, triangle);
+  EXPECT_EQ(mesh.primitives[1].positions, triangle);
+  EXPECT_EQ(r.warnings, std::vector<std::string>{});
+}
+
+// Objects nothing in the chosen scene reaches are read as a whole, and what would refuse a used
+// one is a warning. Validator: 7 errors (UNDEFINED_PROPERTY buffer 1's byteLength, INVALID_URI
+// buffer 2's ";;base64", CAMERA_ZFAR_LEQUAL_ZNEAR, KHR_LIGHTS_PUNCTUAL_LIGHT_SPOT_ANGLES,
+// UNRESOLVED_REFERENCE texture 0's source and mesh 1's material, MESH_PRIMITIVE_TOO_FEW_TEXCOORDS).
+TEST(GltfConformance, UnusedObjectsAreReadAsAWholeAndWarnedAbout) {
+  const std::string path = test::data_path("conformance/unused_objects_read_as_a_whole.gltf");
+  const GltfLoadResult r = load_gltf(path);
+  EXPECT_EQ(triangles(r.scene), 1u);
+  const std::string ignored = "ignored, as the scene does not use it: ";
+  const std::vector<std::string> problems = {
+      "texture 0 refers to image 3, but the file has no images",
+      "mesh 1 primitive 0 refers to material 5, but the file has 1 material",
+      "buffer 1 has no valid byteLength",
+      "buffer 2 has a data URI whose header has a parameter '' that is not attribute=value",
+      "camera 0 has zfar 1 not beyond its znear 2",
+      "light 0 has spot cone angles 0.5 (inner) and 0.25 (outer); glTF requires 0 <= inner < outer <= pi/2"};
+  std::vector<std::string> expected;
+  for (const std::string& p : problems) expected.push_back(ignored + p);
+  EXPECT_EQ(r.warnings, expected);
+  // Each scene but the first uses one of them: refused with the same line.
+  const char* scenes[] = {"texture", "mesh", "buffer", "data URI", "camera", "light"};
+  for (std::size_t i = 0; i < problems.size(); ++i) {
+    try {
+      load_gltf(path, GltfLoadParams{scenes[i]});
+      ADD_FAILURE() << "scene " << scenes[i] << " loaded";
+    } catch (const SceneLoadError& e) {
+      EXPECT_EQ(e.problem(), problems[i]) << "scene " << scenes[i];
+    }
+  }
 }
 
 TEST(GltfConformance, InfoListsTheWarnings) {
