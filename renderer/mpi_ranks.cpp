@@ -183,10 +183,13 @@ class MpiRankGroup : public RankGroup {
   // Notes for the watchdog: counters at rank 0 advanced with the same remote atomic as the
   // work counter (MPI_Fetch_and_op, MPI_SUM), which needs nothing of rank 0 while it renders;
   // other one-sided operations may wait for rank 0 to enter MPI, serialising the ranks.
+  // The operation completes only at the caller's next flush: its buffers must outlive this
+  // call (on the stack they did not, which AddressSanitizer caught over TCP), so the one is
+  // static and the discarded results go to members, two in flight at most (enter()).
   void add_at_rank0(MPI_Aint slot) {
-    const long long one = 1;
-    long long before = 0;
-    MPI_Fetch_and_op(&one, &before, MPI_LONG_LONG, 0, slot, MPI_SUM, window_);
+    static const long long one = 1;
+    long long* discarded = &discarded_[next_discarded_++ % 2];
+    MPI_Fetch_and_op(&one, discarded, MPI_LONG_LONG, 0, slot, MPI_SUM, window_);
   }
   void note_beat() { add_at_rank0(beats_slot(rank_)); }
   // Before each collective call: every rank makes the same calls, so their counts agree.
@@ -252,6 +255,8 @@ class MpiRankGroup : public RankGroup {
   long long calls_ = 0;
   double communication_ = 0.0;
   MPI_Win window_;
+  long long discarded_[2] = {0, 0};  // add_at_rank0's results, never read
+  unsigned next_discarded_ = 0;
 };
 
 }  // namespace
