@@ -10,6 +10,7 @@
 #include <cairo.h>
 
 #include "renderer/file_output.h"
+#include "renderer/image_codec.h"
 #include "renderer/image_output.h"
 
 namespace tessera {
@@ -66,7 +67,9 @@ bool is_svg_path(const std::string& path) {
 }
 
 void check_chart_path(const std::string& path) {
-  if (is_svg_path(path)) check_writable_path(path);
+  // A raster chart is written, and the heat map's colours made (viridis), by the image module:
+  // loaded here, before the work, so that a missing module fails before anything is rendered.
+  if (is_svg_path(path)) check_writable_path(path), (void)image_codec();
   else check_output_path(path);
 }
 
