@@ -97,13 +97,17 @@ vec3 MaterialTable::anisotropy_direction(const Material& m, const SurfaceHit& hi
   return strength > 0.0f ? world / len : vec3(0.0f);
 }
 
+vec3 MaterialTable::emission(const Material& m, const SurfaceHit& hit) const {
+  return m.emissive_factor * m.emissive_strength * vec3(lookup(m.emissive_texture, srgb_, hit));
+}
+
 ShadingPoint MaterialTable::evaluate(const SurfaceHit& hit) const {
   const Material& m = material(hit.material);
   ShadingPoint sp;
   const vec4 base = m.base_color_factor * lookup(m.base_color_texture, srgb_, hit) * hit.color;
   sp.base_color = glm::clamp(vec3(base), 0.0f, 1.0f);
   sp.alpha = glm::clamp(base.a, 0.0f, 1.0f);
-  sp.emission = m.emissive_factor * m.emissive_strength * vec3(lookup(m.emissive_texture, srgb_, hit));
+  sp.emission = emission(m, hit);
   sp.double_sided = m.double_sided;
   sp.unlit = m.unlit;
   if (m.unlit) return sp;

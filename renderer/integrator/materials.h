@@ -42,6 +42,8 @@ class MaterialTable {
   explicit MaterialTable(const SceneDescription& scene);
 
   ShadingPoint evaluate(const SurfaceHit& hit) const;
+  // evaluate(hit).emission alone (one texture, not every one): what light sampling needs.
+  vec3 emission(const SurfaceHit& hit) const { return emission(material(hit.material), hit); }
   const Material& material(int index) const;
 
   // Opacity for the alpha test: 0 or 1 for MASK (alphaCutoff), the alpha itself for BLEND,
@@ -49,6 +51,7 @@ class MaterialTable {
   float opacity(int material, const vec2 uv[2], const vec4& color) const;
 
  private:
+  vec3 emission(const Material& m, const SurfaceHit& hit) const;
   vec4 lookup(const TextureRef& ref, const std::vector<TextureImage>& images, const SurfaceHit& hit) const;
   vec3 perturbed_normal(const TextureRef& map, float scale, const SurfaceHit& hit) const;
   vec3 anisotropy_direction(const Material& m, const SurfaceHit& hit, float& strength) const;
