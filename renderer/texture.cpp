@@ -61,7 +61,9 @@ TextureImage make_texture_image(const Image& image, ColorEncoding encoding) {
   out.width = image.width;
   out.height = image.height;
   out.encoding = encoding;
-  const std::size_t n = static_cast<std::size_t>(image.width) * image.height;
+  out.blocks_x = (image.width + TextureImage::kBlock - 1) / TextureImage::kBlock;
+  const int blocks_y = (image.height + TextureImage::kBlock - 1) / TextureImage::kBlock;
+  const std::size_t stored = static_cast<std::size_t>(out.blocks_x) * blocks_y * TextureImage::kBlock * TextureImage::kBlock;
   const int nc = image.channels;
   auto expand = [nc](auto&& value, std::size_t p, auto one) {  // grey, grey+alpha, RGB -> RGBA
     using T = decltype(one);
@@ -70,38 +72,41 @@ TextureImage make_texture_image(const Image& image, ColorEncoding encoding) {
     if (nc == 2) return std::array<T, 4>{g, g, g, value(p * nc + 1)};
     return std::array<T, 4>{g, value(p * nc + 1), value(p * nc + 2), nc == 4 ? value(p * nc + 3) : one};
   };
-  // Blocks of texels in parallel: a 2048^2 texture is 4 M of them.
-  auto each_texel = [n](auto&& convert) {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1 << 16), [&](const tbb::blocked_range<std::size_t>& r) {
-      for (std::size_t p = r.begin(); p != r.end(); ++p) convert(p);
+  // Rows of texels in parallel: a 2048^2 texture is 4 M of them. p is the source's row-major
+  // index, `at` where the texel is stored.
+  auto each_texel = [&](auto&& convert) {
+    tbb::parallel_for(tbb::blocked_range<int>(0, image.height, 32), [&](const tbb::blocked_range<int>& rows) {
+      for (int j = rows.begin(); j != rows.end(); ++j)
+        for (int i = 0; i < image.width; ++i) convert(static_cast<std::size_t>(j) * image.width + i, out.index(i, j));
     });
   };
   if (image.bits_per_channel == 8) {
-    out.texels8.resize(n);
+    out.texels8.resize(stored);
     auto byte = [&](std::size_t i) { return image.pixels[i]; };
-    each_texel([&](std::size_t p) { out.texels8[p] = expand(byte, p, std::uint8_t{255}); });
+    each_texel([&](std::size_t p, std::size_t at) { out.texels8[at] = expand(byte, p, std::uint8_t{255}); });
     return out;
   }
-  out.texels_float.resize(n);
+  out.texels_float.resize(stored);
   auto value = [&](std::size_t i) { return channel(image, i); };
-  each_texel([&](std::size_t p) {
+  each_texel([&](std::size_t p, std::size_t at) {
     const std::array<float, 4> t = expand(value, p, 1.0f);
     vec4 c(t[0], t[1], t[2], t[3]);
     if (encoding == ColorEncoding::SRGB)
       for (int k = 0; k < 3; ++k) c[k] = srgb_to_linear(c[k]);
-    out.texels_float[p] = c;
+    out.texels_float[at] = c;
   });
   return out;
 }
 
-vec4 TextureImage::texel(std::size_t index) const {
-  if (texels8.empty()) return texels_float[index];
+vec4 TextureImage::texel(int i, int j) const {
+  const std::size_t at = index(i, j);
+  if (texels8.empty()) return texels_float[at];
   static const std::array<float, 256> kSrgb = [] {
     std::array<float, 256> t;
-    for (int i = 0; i < 256; ++i) t[i] = srgb_to_linear(i / 255.0f);
+    for (int k = 0; k < 256; ++k) t[k] = srgb_to_linear(k / 255.0f);
     return t;
   }();
-  const std::array<std::uint8_t, 4>& t = texels8[index];
+  const std::array<std::uint8_t, 4>& t = texels8[at];
   constexpr float kInv255 = 1.0f / 255.0f;
   if (encoding == ColorEncoding::SRGB) return {kSrgb[t[0]], kSrgb[t[1]], kSrgb[t[2]], t[3] * kInv255};
   return {t[0] * kInv255, t[1] * kInv255, t[2] * kInv255, t[3] * kInv255};
@@ -110,18 +115,20 @@ vec4 TextureImage::texel(std::size_t index) const {
 vec4 sample_texture(const TextureImage& image, const TextureRef& ref, vec2 uv) {
   uv = transform_uv(ref.transform, uv);
   if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) uv = vec2(0.0f);
-  const float x = uv.x * image.width - 0.5f, y = uv.y * image.height - 0.5f;
-  auto texel = [&](int i, int j) {
-    return image.texel(static_cast<std::size_t>(wrap(j, image.height, ref.wrap_t)) * image.width +
-                       wrap(i, image.width, ref.wrap_s));
-  };
-  // Keep coordinates in int range before flooring; wrapping makes far values equivalent.
-  const float fx = std::floor(std::fmod(x, 1 << 24)), fy = std::floor(std::fmod(y, 1 << 24));
-  const float dx = std::fmod(x, 1 << 24) - fx, dy = std::fmod(y, 1 << 24) - fy;
+  // Keep coordinates in int range before flooring; wrapping makes far values equivalent
+  // (fmod returns smaller values unchanged: it is skipped for them, a division saved).
+  auto in_range = [](float v) { return std::fabs(v) < 0x1p24f ? v : std::fmod(v, 0x1p24f); };
+  const float x = in_range(uv.x * image.width - 0.5f), y = in_range(uv.y * image.height - 0.5f);
+  const float fx = std::floor(x), fy = std::floor(y);
+  const float dx = x - fx, dy = y - fy;
   const int i = static_cast<int>(fx), j = static_cast<int>(fy);
-  if (ref.filter == FilterMode::Nearest) return texel(i + (dx >= 0.5f), j + (dy >= 0.5f));
-  return (1 - dx) * (1 - dy) * texel(i, j) + dx * (1 - dy) * texel(i + 1, j) +
-         (1 - dx) * dy * texel(i, j + 1) + dx * dy * texel(i + 1, j + 1);
+  // Inside the image every wrap mode is the identity: only texels past an edge are wrapped.
+  auto column = [&](int c) { return c >= 0 && c < image.width ? c : wrap(c, image.width, ref.wrap_s); };
+  auto row = [&](int r) { return r >= 0 && r < image.height ? r : wrap(r, image.height, ref.wrap_t); };
+  if (ref.filter == FilterMode::Nearest) return image.texel(column(i + (dx >= 0.5f)), row(j + (dy >= 0.5f)));
+  const int i0 = column(i), i1 = column(i + 1), j0 = row(j), j1 = row(j + 1);
+  return (1 - dx) * (1 - dy) * image.texel(i0, j0) + dx * (1 - dy) * image.texel(i1, j0) +
+         (1 - dx) * dy * image.texel(i0, j1) + dx * dy * image.texel(i1, j1);
 }
 
 }  // namespace tessera

@@ -1,0 +1,107 @@
+// Texture lookups against a second method: bilinear and nearest filtering written directly
+// from the glTF sampler rules on the source image's row-major pixels (the texel centres at
+// (i + 0.5) / width; REPEAT, CLAMP_TO_EDGE and MIRRORED_REPEAT as OpenGL defines them). The
+// renderer stores texels in 4x4 blocks and skips wrapping inside the image: sizes that are
+// not multiples of 4, coordinates far outside [0, 1] and every wrap mode must not notice.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <random>
+
+#include "renderer/texture.h"
+
+namespace tessera {
+namespace {
+
+Image ramp_image(int w, int h, int bits) {
+  Image img;
+  img.width = w, img.height = h, img.channels = 4, img.bits_per_channel = bits;
+  const std::size_t n = static_cast<std::size_t>(w) * h * 4;
+  img.pixels.resize(n * (bits / 8));
+  std::mt19937 rng(static_cast<unsigned>(w * 31 + h));
+  for (std::size_t k = 0; k < n; ++k) {
+    if (bits == 8) {
+      img.pixels[k] = static_cast<std::uint8_t>(rng() & 255);
+    } else {
+      const float v = static_cast<float>(rng() % 1000) / 999.0f;
+      std::memcpy(&img.pixels[4 * k], &v, 4);
+    }
+  }
+  return img;
+}
+
+int wrap_reference(int i, int n, WrapMode mode) {
+  if (mode == WrapMode::ClampToEdge) return std::clamp(i, 0, n - 1);
+  const int m = ((i % (2 * n)) + 2 * n) % (2 * n);
+  if (mode == WrapMode::MirroredRepeat) return m < n ? m : 2 * n - 1 - m;
+  return m % n;
+}
+
+vec4 texel_reference(const Image& img, int i, int j, ColorEncoding enc) {
+  const std::size_t at = (static_cast<std::size_t>(j) * img.width + i) * 4;
+  vec4 c;
+  for (int k = 0; k < 4; ++k) {
+    float v;
+    if (img.bits_per_channel == 8) v = img.pixels[at + k] / 255.0f;
+    else std::memcpy(&v, &img.pixels[4 * (at + k)], 4);
+    c[k] = enc == ColorEncoding::SRGB && k < 3 ? srgb_to_linear(v) : v;
+  }
+  return c;
+}
+
+vec4 lookup_reference(const Image& img, const TextureRef& ref, vec2 uv, ColorEncoding enc) {
+  const float x = uv.x * img.width - 0.5f, y = uv.y * img.height - 0.5f;  // the texel-centre convention
+  const int i = static_cast<int>(std::floor(x)), j = static_cast<int>(std::floor(y));
+  const float dx = x - std::floor(x), dy = y - std::floor(y);
+  auto t = [&](int a, int b) {
+    return texel_reference(img, wrap_reference(a, img.width, ref.wrap_s), wrap_reference(b, img.height, ref.wrap_t), enc);
+  };
+  if (ref.filter == FilterMode::Nearest) return t(i + (dx >= 0.5f), j + (dy >= 0.5f));
+  const float fx = dx, fy = dy;
+  return (1 - fx) * (1 - fy) * t(i, j) + fx * (1 - fy) * t(i + 1, j) + (1 - fx) * fy * t(i, j + 1) + fx * fy * t(i + 1, j + 1);
+}
+
+TEST(Texture, LookupsEqualTheSamplerRulesOnRowMajorPixels) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> uv(-3.0f, 4.0f);
+  for (int bits : {8, 32}) {
+    for (auto [w, h] : {std::pair{1, 1}, {5, 3}, {4, 4}, {17, 9}, {64, 33}}) {
+      const Image img = ramp_image(w, h, bits);
+      for (ColorEncoding enc : {ColorEncoding::Linear, ColorEncoding::SRGB}) {
+        const TextureImage tex = make_texture_image(img, enc);
+        for (WrapMode s : {WrapMode::Repeat, WrapMode::ClampToEdge, WrapMode::MirroredRepeat})
+          for (WrapMode t : {WrapMode::Repeat, WrapMode::ClampToEdge, WrapMode::MirroredRepeat})
+            for (FilterMode f : {FilterMode::Linear, FilterMode::Nearest}) {
+              TextureRef ref;
+              ref.image = 0, ref.wrap_s = s, ref.wrap_t = t, ref.filter = f;
+              for (int k = 0; k < 300; ++k) {
+                const vec2 at(uv(rng), uv(rng));
+                const vec4 got = sample_texture(tex, ref, at), want = lookup_reference(img, ref, at, enc);
+                for (int c = 0; c < 4; ++c)
+                  ASSERT_NEAR(got[c], want[c], 2e-6f) << w << "x" << h << " bits " << bits << " uv " << at.x << "," << at.y;
+              }
+            }
+      }
+    }
+  }
+}
+
+// Each texel centre returns exactly that texel: nothing is blended across the 4x4 blocks'
+// borders or lost at the padding of a size that is not a multiple of 4.
+TEST(Texture, TexelCentresReturnTheirTexelAcrossBlockBorders) {
+  const Image img = ramp_image(7, 6, 8);
+  const TextureImage tex = make_texture_image(img, ColorEncoding::Linear);
+  TextureRef ref;
+  ref.image = 0;
+  for (int j = 0; j < img.height; ++j)
+    for (int i = 0; i < img.width; ++i) {
+      const vec4 got = sample_texture(tex, ref, vec2((i + 0.5f) / img.width, (j + 0.5f) / img.height));
+      const vec4 want = texel_reference(img, i, j, ColorEncoding::Linear);
+      for (int c = 0; c < 4; ++c) EXPECT_FLOAT_EQ(got[c], want[c]) << "texel " << i << "," << j;
+    }
+}
+
+}  // namespace
+}  // namespace tessera
