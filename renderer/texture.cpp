@@ -15,16 +15,17 @@ float srgb_to_linear(float v) {
 namespace {
 
 float channel(const Image& img, std::size_t i) {
+  const std::uint8_t* px = img.pixels->data();
   switch (img.bits_per_channel) {
-    case 8: return img.pixels[i] / 255.0f;
+    case 8: return px[i] / 255.0f;
     case 16: {
       std::uint16_t v;
-      std::memcpy(&v, &img.pixels[2 * i], 2);
+      std::memcpy(&v, &px[2 * i], 2);
       return v / 65535.0f;
     }
     default: {
       float v;
-      std::memcpy(&v, &img.pixels[4 * i], 4);
+      std::memcpy(&v, &px[4 * i], 4);
       return std::isfinite(v) ? v : 0.0f;
     }
   }
@@ -76,10 +77,20 @@ TextureImage make_texture_image(const Image& image, ColorEncoding encoding) {
       for (std::size_t p = r.begin(); p != r.end(); ++p) convert(p);
     });
   };
+  if (image.bits_per_channel == 8 && nc == 4) {  // already RGBA: shared, not copied
+    out.texels8 = image.pixels;
+    out.rgba8 = out.texels8->data();
+    return out;
+  }
   if (image.bits_per_channel == 8) {
-    out.texels8.resize(n);
-    auto byte = [&](std::size_t i) { return image.pixels[i]; };
-    each_texel([&](std::size_t p) { out.texels8[p] = expand(byte, p, std::uint8_t{255}); });
+    auto rgba = std::make_shared<std::vector<std::uint8_t>>(4 * n);
+    auto byte = [&](std::size_t i) { return (*image.pixels)[i]; };
+    each_texel([&](std::size_t p) {
+      const std::array<std::uint8_t, 4> t = expand(byte, p, std::uint8_t{255});
+      std::memcpy(&(*rgba)[4 * p], t.data(), 4);
+    });
+    out.rgba8 = rgba->data();
+    out.texels8 = std::move(rgba);
     return out;
   }
   out.texels_float.resize(n);
@@ -95,13 +106,13 @@ TextureImage make_texture_image(const Image& image, ColorEncoding encoding) {
 }
 
 vec4 TextureImage::texel(std::size_t index) const {
-  if (texels8.empty()) return texels_float[index];
+  if (!rgba8) return texels_float[index];
   static const std::array<float, 256> kSrgb = [] {
     std::array<float, 256> t;
     for (int i = 0; i < 256; ++i) t[i] = srgb_to_linear(i / 255.0f);
     return t;
   }();
-  const std::array<std::uint8_t, 4>& t = texels8[index];
+  const std::uint8_t* t = rgba8 + 4 * index;
   constexpr float kInv255 = 1.0f / 255.0f;
   if (encoding == ColorEncoding::SRGB) return {kSrgb[t[0]], kSrgb[t[1]], kSrgb[t[2]], t[3] * kInv255};
   return {t[0] * kInv255, t[1] * kInv255, t[2] * kInv255, t[3] * kInv255};

@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "renderer/math.h"
@@ -12,12 +13,16 @@ namespace tessera {
 
 enum class ColorEncoding { Linear, SRGB };
 
-// 8-bit images stay 8-bit RGBA (a quarter of the memory of floats) and are decoded through
-// a 256-entry table at lookup; 16-bit and float images are stored as linear float RGBA.
+// 8-bit images stay 8-bit RGBA (a quarter of the memory of floats, and no copy at all when
+// the image is RGBA) and are decoded through a 256-entry table at lookup; 16-bit and float
+// images are stored as linear float RGBA.
 struct TextureImage {
   int width = 0, height = 0;
   ColorEncoding encoding = ColorEncoding::Linear;
-  std::vector<std::array<std::uint8_t, 4>> texels8;  // row-major, top row first
+  // 8-bit: RGBA bytes, row-major, top row first; the scene image's own buffer when that is
+  // RGBA already (every decoded JPEG, PNG and WebP), else a converted copy. rgba8 = its data.
+  std::shared_ptr<const std::vector<std::uint8_t>> texels8;
+  const std::uint8_t* rgba8 = nullptr;
   std::vector<vec4> texels_float;  // linear, when the source has more than 8 bits
 
   bool empty() const { return width == 0; }
