@@ -8,6 +8,9 @@
 // YCbCr to RGB conversion (libjpeg's 16-bit tables, stb's 20-bit products) and of the
 // triangle-filter chroma upsampling both use (libjpeg alternates a bias of 7 and 8, stb adds
 // 8). These add to at most a few 8-bit levels on any channel, and well under one on average.
+// One place is outside any standard: the last column of an odd-width 4:2:2 image, whose
+// chroma the decoders extrapolate differently (69 levels apart at a sharp edge there, each
+// as far from the source as the other on average); its pixels count in the mean only.
 #include <gtest/gtest.h>
 #include <turbojpeg.h>
 
@@ -70,7 +73,8 @@ tinygltf::Image with_stb(const std::vector<std::uint8_t>& jpeg) {
   return image;
 }
 
-void expect_close(const tinygltf::Image& a, const tinygltf::Image& b, const std::string& what) {
+void expect_close(const tinygltf::Image& a, const tinygltf::Image& b, const std::string& what,
+                  bool odd_last_column = false) {
   ASSERT_EQ(a.width, b.width) << what;
   ASSERT_EQ(a.height, b.height) << what;
   ASSERT_EQ(a.component, 4) << what;
@@ -81,7 +85,8 @@ void expect_close(const tinygltf::Image& a, const tinygltf::Image& b, const std:
   double sum = 0.0;
   for (std::size_t i = 0; i < a.image.size(); ++i) {
     const int d = std::abs(int(a.image[i]) - int(b.image[i]));
-    most = std::max(most, d);
+    const bool last_column = (i / 4) % a.width == static_cast<std::size_t>(a.width - 1);
+    if (!(odd_last_column && last_column)) most = std::max(most, d);
     sum += d;
   }
   EXPECT_LE(most, kMostLevels) << what;
@@ -100,7 +105,7 @@ TEST(GltfJpeg, MatchesStbImageWithinTheDecodersTolerance) {
                            Variant{"4:4:4", TJSAMP_444, 0}, Variant{"progressive 4:2:0", TJSAMP_420, TJFLAG_PROGRESSIVE},
                            Variant{"progressive 4:4:4", TJSAMP_444, TJFLAG_PROGRESSIVE}}) {
     const std::vector<std::uint8_t> jpeg = encode(rgb, w, h, TJPF_RGB, v.subsampling, 90, v.flags);
-    expect_close(with_libjpeg_turbo(jpeg), with_stb(jpeg), v.name);
+    expect_close(with_libjpeg_turbo(jpeg), with_stb(jpeg), v.name, v.subsampling == TJSAMP_422);
   }
   const std::vector<std::uint8_t> grey = test_pattern(w, h, 1);
   const tinygltf::Image g = with_libjpeg_turbo(encode(grey, w, h, TJPF_GRAY, TJSAMP_GRAY, 90));
