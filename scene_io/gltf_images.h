@@ -1,6 +1,6 @@
 // glTF images and which one a texture shows: PNG (tinygltf's stb_image), JPEG (libjpeg-turbo,
-// gltf_jpeg.h), WebP (EXT_texture_webp, libwebp), and KTX2 (KHR_texture_basisu), which Debian has no decoder
-// for: its image is left empty and the texture's fallback source is used instead.
+// gltf_jpeg.h), WebP (EXT_texture_webp, libwebp), and KTX2 (KHR_texture_basisu), which Debian
+// has no decoder for: its image is left empty and the texture's fallback source is used instead.
 #pragma once
 
 #include <string>

@@ -44,7 +44,7 @@ std::string decode_jpeg(tinygltf::Image* image, const unsigned char* bytes, int 
   const bool cmyk = colorspace == TJCS_CMYK || colorspace == TJCS_YCCK;
   image->image.resize(static_cast<std::size_t>(w) * h * 4);
   // Any warning (data patched over) is an error too; LIMITSCANS refuses a progressive JPEG
-  // of over 500 scans, which would take minutes to decode.
+  // of over 500 scans, libjpeg-turbo's guard against such files' unbounded decoding time.
   if (tjDecompress2(tj.get(), bytes, length, image->image.data(), w, 0, h, cmyk ? TJPF_CMYK : TJPF_RGBA,
                     TJFLAG_LIMITSCANS) != 0) {
     std::vector<unsigned char>().swap(image->image);

@@ -1,7 +1,7 @@
 // JPEG images through libjpeg-turbo's TurboJPEG API: SIMD inverse DCT, upsampling and colour
-// conversion, several times faster than the stb_image decoder inside tinygltf (which keeps
-// PNG). Decoded as stb_image decoded them before: 8-bit RGBA, top row first, with the same
-// smooth ("fancy") chroma upsampling, and no EXIF orientation (glTF ignores it).
+// conversion, 1.3 to 2.1 times faster than the stb_image inside tinygltf on DamagedHelmet's
+// images (tinygltf keeps PNG). Decoded as stb_image decoded them before: 8-bit RGBA, top row
+// first, the same smooth ("fancy") chroma upsampling, Exif orientation ignored (glTF allows it).
 #pragma once
 
 #include <string>
