@@ -15,16 +15,17 @@ float srgb_to_linear(float v) {
 namespace {
 
 float channel(const Image& img, std::size_t i) {
+  const std::uint8_t* px = img.pixels->data();
   switch (img.bits_per_channel) {
-    case 8: return img.pixels[i] / 255.0f;
+    case 8: return px[i] / 255.0f;
     case 16: {
       std::uint16_t v;
-      std::memcpy(&v, &img.pixels[2 * i], 2);
+      std::memcpy(&v, &px[2 * i], 2);
       return v / 65535.0f;
     }
     default: {
       float v;
-      std::memcpy(&v, &img.pixels[4 * i], 4);
+      std::memcpy(&v, &px[4 * i], 4);
       return std::isfinite(v) ? v : 0.0f;
     }
   }
@@ -82,7 +83,8 @@ TextureImage make_texture_image(const Image& image, ColorEncoding encoding) {
   };
   if (image.bits_per_channel == 8) {
     out.texels8.resize(stored);
-    auto byte = [&](std::size_t i) { return image.pixels[i]; };
+    const std::uint8_t* px = image.pixels->data();
+    auto byte = [px](std::size_t i) { return px[i]; };
     each_texel([&](std::size_t p, std::size_t at) { out.texels8[at] = expand(byte, p, std::uint8_t{255}); });
     return out;
   }

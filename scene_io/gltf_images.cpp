@@ -1,11 +1,14 @@
 #include "scene_io/gltf_images.h"
 
+#include <algorithm>
 #include <cstring>
+#include <numeric>
 
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 #include <webp/decode.h>
 
+#include "scene_io/gltf_jpeg.h"
 #include "scene_io/load_error.h"
 
 namespace tessera {
@@ -42,6 +45,17 @@ int extension_source(const tinygltf::Texture& tex, const char* name) {
   return it->second.Get("source").GetNumberAsInt();
 }
 
+// The one place that picks a decoder, by the bytes' signature: JPEG libjpeg-turbo, WebP
+// libwebp, anything else (PNG) tinygltf's stb_image. "" when decoded, else the problem.
+std::string decode_image(tinygltf::Image* image, int index, const unsigned char* bytes, int size) {
+  if (is_jpeg(bytes, size)) return decode_jpeg(image, bytes, size);
+  if (is_webp(bytes, size)) return decode_webp(image, bytes, size) ? "" : "it is not a valid WebP image";
+  std::string ignored, warn;
+  return tinygltf::LoadImageData(image, index, &ignored, &warn, 0, 0, bytes, size, nullptr)
+             ? ""
+             : "it is not a PNG, JPEG or WebP image";
+}
+
 }  // namespace
 
 bool load_gltf_image(tinygltf::Image* image, const int index, std::string* err, std::string* warn, int width,
@@ -57,18 +71,21 @@ bool load_gltf_image(tinygltf::Image* image, const int index, std::string* err, 
 
 void decode_pending_images(tinygltf::Model& model, ImageLoadContext& ctx) {
   std::vector<std::string> problems(ctx.pending.size());
-  tbb::parallel_for(std::size_t{0}, ctx.pending.size(), [&](std::size_t k) {
+  // Largest first: one large image (DamagedHelmet's progressive JPEG) otherwise decides when
+  // the last thread finishes.
+  std::vector<std::size_t> order(ctx.pending.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return ctx.pending[a].bytes.size() > ctx.pending[b].bytes.size();
+  });
+  tbb::parallel_for(std::size_t{0}, order.size(), std::size_t{1}, [&](std::size_t n) {
+    const std::size_t k = order[n];
     const ImageLoadContext::Pending& p = ctx.pending[k];
     tinygltf::Image* image = &model.images[p.index];
-    const unsigned char* bytes = p.bytes.data();
-    const int size = static_cast<int>(p.bytes.size());
-    std::string ignored, warn;
-    if (is_webp(bytes, size) ? decode_webp(image, bytes, size)
-                             : tinygltf::LoadImageData(image, p.index, &ignored, &warn, 0, 0, bytes, size, nullptr))
-      return;
+    const std::string problem = decode_image(image, p.index, p.bytes.data(), static_cast<int>(p.bytes.size()));
+    if (problem.empty()) return;
     // A defect of this image alone: refused only when a texture the scene uses shows it.
-    problems[k] = fmt::format("image {} ({}) could not be decoded: it is not a PNG, JPEG or WebP image", p.index,
-                              gltf_image_source(*image));
+    problems[k] = fmt::format("image {} ({}) could not be decoded: {}", p.index, gltf_image_source(*image), problem);
     image->mimeType = kUndecodableImage;
   });
   for (std::size_t k = 0; k < problems.size(); ++k)

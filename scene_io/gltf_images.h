@@ -1,6 +1,6 @@
-// glTF images and which one a texture shows: PNG and JPEG (tinygltf's stb_image), WebP
-// (EXT_texture_webp, libwebp), and KTX2 (KHR_texture_basisu), which Debian has no decoder
-// for: its image is left empty and the texture's fallback source is used instead.
+// glTF images and which one a texture shows: PNG (tinygltf's stb_image), JPEG (libjpeg-turbo,
+// gltf_jpeg.h), WebP (EXT_texture_webp, libwebp), and KTX2 (KHR_texture_basisu), which Debian
+// has no decoder for: its image is left empty and the texture's fallback source is used instead.
 #pragma once
 
 #include <string>
@@ -32,8 +32,9 @@ struct ImageLoadContext {
 bool load_gltf_image(tinygltf::Image* image, int index, std::string* err, std::string* warn, int width, int height,
                      const unsigned char* bytes, int size, void* user);
 
-// Decodes the images load_gltf_image kept (PNG, JPEG: tinygltf's stb_image; WebP: libwebp),
-// in parallel (TBB); each one it cannot decode goes to ctx.undecodable, in index order.
+// Decodes the images load_gltf_image kept, each by the decoder its bytes' signature picks
+// (JPEG: libjpeg-turbo; WebP: libwebp; else tinygltf's stb_image, for PNG), in parallel
+// (TBB), largest first; each one it cannot decode goes to ctx.undecodable, in index order.
 void decode_pending_images(tinygltf::Model& model, ImageLoadContext& ctx);
 
 // "textures/a.png", "bufferView 3" or "data URI": where an image's bytes are, for messages.

@@ -48,12 +48,13 @@ bool finite_matrix(const glm::mat4& m) {
 class Converter {
  public:
   Converter(const GltfDocument& document, GltfLoadResult& result)
-      : model_(document.model), file_(document.path), defects_(document.defects), result_(result),
+      : model_(document.model), image_pixels_(document.image_pixels), file_(document.path),
+        defects_(document.defects), result_(result),
         out_(result.scene), warnings_(result.warnings), reader_{model_, file_, &defects_, &read_accessors_} {}
 
   void run(const GltfLoadParams& params) {
     check_extensions();
-    out_.images = convert_images(model_, file_);
+    out_.images = convert_images(model_, image_pixels_, file_);
     parent_ = check_node_hierarchy(model_, file_);
     const std::vector<int> roots = scene_roots(model_, choose_scene(params.scene), parent_, file_);
     result_.animations = animation_names(model_);
@@ -550,6 +551,7 @@ class Converter {
   }
 
   const tinygltf::Model& model_;
+  const std::vector<SharedPixels>& image_pixels_;
   const std::string& file_;
   const GltfDefects& defects_;
   GltfLoadResult& result_;
@@ -581,8 +583,9 @@ void deduplicate(std::vector<std::string>& warnings) {
 
 GltfDocument read_gltf_from_memory(const std::vector<std::uint8_t>& bytes, const std::string& display_name,
                                    const std::string& base_dir) {
-  GltfDocument document{display_name, {}, {}};
+  GltfDocument document{display_name, {}, {}, {}};
   document.model = parse_gltf(bytes, display_name, base_dir, document.defects);
+  document.image_pixels = take_image_pixels(document.model);
   return document;
 }
 

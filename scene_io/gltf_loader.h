@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -48,6 +49,7 @@ struct GltfDocument {
   std::string path;  // as given: errors name it
   tinygltf::Model model;
   GltfDefects defects;  // objects kept as placeholders: refused if used, else warned about
+  std::vector<std::shared_ptr<const std::vector<std::uint8_t>>> image_pixels;  // decoded, by image
   double read_seconds = 0.0;  // read_gltf: reading, parsing, decoding images
 };
 

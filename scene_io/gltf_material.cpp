@@ -133,7 +133,16 @@ std::vector<Material> convert_materials(const tinygltf::Model& model, const std:
   return out;
 }
 
-std::vector<Image> convert_images(const tinygltf::Model& model, const std::string& file) {
+std::vector<SharedPixels> take_image_pixels(tinygltf::Model& model) {
+  std::vector<SharedPixels> out;
+  for (tinygltf::Image& image : model.images)
+    out.push_back(image.image.empty() ? nullptr
+                                      : std::make_shared<const std::vector<std::uint8_t>>(std::move(image.image)));
+  return out;
+}
+
+std::vector<Image> convert_images(const tinygltf::Model& model, const std::vector<SharedPixels>& pixels,
+                                  const std::string& file) {
   std::vector<Image> out;
   for (std::size_t i = 0; i < model.images.size(); ++i) {
     const tinygltf::Image& src = model.images[i];
@@ -153,9 +162,9 @@ std::vector<Image> convert_images(const tinygltf::Model& model, const std::strin
     const std::size_t expected = valid_shape ? static_cast<std::size_t>(src.width) * src.height *
                                                    src.component * (src.bits / 8)
                                              : 0;
-    if (!valid_shape || src.image.size() != expected)
+    if (!valid_shape || !pixels[i] || pixels[i]->size() != expected)
       throw SceneLoadError(file, fmt::format("image {} ('{}') could not be decoded", i, img.name));
-    img.pixels.assign(src.image.begin(), src.image.end());
+    img.pixels = pixels[i];
     out.push_back(std::move(img));
   }
   return out;

@@ -1,6 +1,7 @@
 // glTF materials and images -> the renderer's plain Material and Image.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,13 @@ std::vector<Material> convert_materials(const tinygltf::Model& model, const std:
 const tinygltf::Sampler* texture_sampler(const tinygltf::Model& model, const std::string& file, int index,
                                          const GltfDefects& defects);
 
-std::vector<Image> convert_images(const tinygltf::Model& model, const std::string& file);
+// Each image's decoded bytes, by index, moved out of the model (which keeps its shape and
+// mimeType) to be shared by every scene converted from it; null where none were decoded.
+using SharedPixels = std::shared_ptr<const std::vector<std::uint8_t>>;
+std::vector<SharedPixels> take_image_pixels(tinygltf::Model& model);
+
+// Every image, by index, sharing the bytes take_image_pixels took.
+std::vector<Image> convert_images(const tinygltf::Model& model, const std::vector<SharedPixels>& pixels,
+                                  const std::string& file);
 
 }  // namespace tessera

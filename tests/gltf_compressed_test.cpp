@@ -188,7 +188,7 @@ TEST(GltfWebp, LosslessWebpDecodesToThePngTexels) {
     EXPECT_EQ(decoded.width, png.width);
     EXPECT_EQ(decoded.height, png.height);
     EXPECT_EQ(decoded.channels, png.channels);
-    EXPECT_TRUE(decoded.pixels == png.pixels) << name;
+    EXPECT_TRUE(*decoded.pixels == *png.pixels) << name;
   }
 }
 

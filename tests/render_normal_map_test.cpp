@@ -20,8 +20,9 @@ double lit_floor(vec3 map_normal, vec3 light_towards) {
   img.channels = 3;
   img.bits_per_channel = 32;
   const vec3 texel = map_normal * 0.5f + 0.5f;  // [-1,1] -> [0,1], stored as float
-  img.pixels.resize(3 * sizeof(float));
-  std::memcpy(img.pixels.data(), &texel[0], 3 * sizeof(float));
+  std::vector<std::uint8_t> bytes(3 * sizeof(float));
+  std::memcpy(bytes.data(), &texel[0], 3 * sizeof(float));
+  img.pixels = std::make_shared<const std::vector<std::uint8_t>>(std::move(bytes));
   s.images.push_back(img);
   Material m = test::diffuse(vec3(0.5f));
   m.normal_texture.image = 0;

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <memory>
 #include <random>
 
 #include "renderer/texture.h"
@@ -19,16 +20,17 @@ Image ramp_image(int w, int h, int bits) {
   Image img;
   img.width = w, img.height = h, img.channels = 4, img.bits_per_channel = bits;
   const std::size_t n = static_cast<std::size_t>(w) * h * 4;
-  img.pixels.resize(n * (bits / 8));
+  std::vector<std::uint8_t> bytes(n * (bits / 8));
   std::mt19937 rng(static_cast<unsigned>(w * 31 + h));
   for (std::size_t k = 0; k < n; ++k) {
     if (bits == 8) {
-      img.pixels[k] = static_cast<std::uint8_t>(rng() & 255);
+      bytes[k] = static_cast<std::uint8_t>(rng() & 255);
     } else {
       const float v = static_cast<float>(rng() % 1000) / 999.0f;
-      std::memcpy(&img.pixels[4 * k], &v, 4);
+      std::memcpy(&bytes[4 * k], &v, 4);
     }
   }
+  img.pixels = std::make_shared<const std::vector<std::uint8_t>>(std::move(bytes));
   return img;
 }
 
@@ -44,8 +46,9 @@ vec4 texel_reference(const Image& img, int i, int j, ColorEncoding enc) {
   vec4 c;
   for (int k = 0; k < 4; ++k) {
     float v;
-    if (img.bits_per_channel == 8) v = img.pixels[at + k] / 255.0f;
-    else std::memcpy(&v, &img.pixels[4 * (at + k)], 4);
+    const std::uint8_t* px = img.pixels->data();
+    if (img.bits_per_channel == 8) v = px[at + k] / 255.0f;
+    else std::memcpy(&v, &px[4 * (at + k)], 4);
     c[k] = enc == ColorEncoding::SRGB && k < 3 ? srgb_to_linear(v) : v;
   }
   return c;
@@ -101,6 +104,45 @@ TEST(Texture, TexelCentresReturnTheirTexelAcrossBlockBorders) {
       const vec4 want = texel_reference(img, i, j, ColorEncoding::Linear);
       for (int c = 0; c < 4; ++c) EXPECT_FLOAT_EQ(got[c], want[c]) << "texel " << i << "," << j;
     }
+}
+
+Image image8(int width, int height, int channels, std::vector<std::uint8_t> bytes) {
+  Image img;
+  img.width = width;
+  img.height = height;
+  img.channels = channels;
+  img.bits_per_channel = 8;
+  img.pixels = std::make_shared<const std::vector<std::uint8_t>>(std::move(bytes));
+  return img;
+}
+
+// The sRGB transfer function (IEC 61966-2-1), as glTF requires for base colour.
+float srgb(float v) { return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f); }
+
+TEST(Texture, ReadsTheSpecsSrgbExample) {
+  const Image img = image8(2, 1, 4, {64, 124, 231, 255, 0, 10, 255, 128});
+  const TextureImage tex = make_texture_image(img, ColorEncoding::SRGB);
+  // The spec's own example: 8-bit [64, 124, 231, 255] decodes to [0.051, 0.202, 0.799, 1.0].
+  const vec4 t = tex.texel(0, 0);
+  EXPECT_NEAR(t.r, 0.051f, 5e-4f);
+  EXPECT_NEAR(t.g, 0.202f, 5e-4f);
+  EXPECT_NEAR(t.b, 0.799f, 5e-4f);
+  EXPECT_FLOAT_EQ(t.a, 1.0f);
+  const vec4 u = make_texture_image(img, ColorEncoding::Linear).texel(1, 0);  // alpha is never sRGB
+  EXPECT_FLOAT_EQ(u.g, 10 / 255.0f);
+  EXPECT_FLOAT_EQ(u.a, 128 / 255.0f);
+}
+
+TEST(Texture, GreyAndRgbExpandToRgba) {
+  const TextureImage rgb = make_texture_image(image8(1, 1, 3, {10, 20, 30}), ColorEncoding::SRGB);
+  const vec4 c = rgb.texel(0, 0);
+  EXPECT_FLOAT_EQ(c.r, srgb(10 / 255.0f));
+  EXPECT_FLOAT_EQ(c.b, srgb(30 / 255.0f));
+  EXPECT_FLOAT_EQ(c.a, 1.0f);
+  const vec4 g = make_texture_image(image8(1, 1, 2, {200, 50}), ColorEncoding::Linear).texel(0, 0);
+  EXPECT_FLOAT_EQ(g.r, 200 / 255.0f);
+  EXPECT_FLOAT_EQ(g.b, 200 / 255.0f);
+  EXPECT_FLOAT_EQ(g.a, 50 / 255.0f);
 }
 
 }  // namespace

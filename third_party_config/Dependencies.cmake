@@ -60,6 +60,11 @@ find_package(meshoptimizer REQUIRED CONFIG)
 pkg_check_modules(WEBP REQUIRED IMPORTED_TARGET libwebp)
 add_library(tessera::webp ALIAS PkgConfig::WEBP)
 
+# libjpeg-turbo 2.1's TurboJPEG API: decodes glTF's JPEG images (libturbojpeg0-dev;
+# scene_io/gltf_jpeg.cpp), several times faster than tinygltf's stb_image. Target: tessera::turbojpeg
+pkg_check_modules(TURBOJPEG REQUIRED IMPORTED_TARGET libturbojpeg>=2.1)
+add_library(tessera::turbojpeg ALIAS PkgConfig::TURBOJPEG)
+
 # glm: vector and matrix math (libglm-dev), header only. Target: glm::glm
 find_package(glm REQUIRED)
 

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -29,11 +30,13 @@ struct Bounds3 {
 };
 
 // Decoded image pixels as stored in the file: 8 or 16 bits per channel (normalized
-// integers) or 32-bit float, row-major, top row first, 1 to 4 channels.
+// integers) or 32-bit float, row-major, top row first, 1 to 4 channels. The bytes are shared
+// and read-only: a document's decoded image and every scene converted from it are one
+// buffer (a 2048^2 texture is 16 MiB; copies cost page faults).
 struct Image {
   std::string name;
   int width = 0, height = 0, channels = 0, bits_per_channel = 8;
-  std::vector<std::uint8_t> pixels;
+  std::shared_ptr<const std::vector<std::uint8_t>> pixels;  // null for an image left undecoded
 };
 
 enum class WrapMode : std::uint8_t { Repeat, ClampToEdge, MirroredRepeat };
