@@ -25,10 +25,6 @@ namespace fs = std::filesystem;
 using Json = nlohmann::json;
 using Problem = std::optional<std::string>;
 
-std::string shorten(const std::string& s, std::size_t most = 60) {
-  return s.size() <= most ? s : s.substr(0, most - 3) + "...";
-}
-
 const Json* member(const Json& object, const char* key) {
   if (!object.is_object()) return nullptr;
   auto it = object.find(key);
@@ -277,6 +273,9 @@ Problem check_image(const Json& image, std::size_t i, std::size_t views) {
   if (!uri && (view < 0 || view >= static_cast<long long>(views)))
     return fmt::format("{} refers to bufferView {}, but the file has {}", what,
                        shorten(member(image, "bufferView")->dump()), count_of(views, "bufferView"));
+  if (!uri && !member(image, "mimeType"))
+    return fmt::format("{} is in bufferView {} but has no mimeType (glTF requires one for an image in a bufferView)",
+                       what, view);
   return std::nullopt;
 }
 

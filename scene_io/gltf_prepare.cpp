@@ -11,6 +11,7 @@
 #include "scene_io/gltf_defects.h"
 #include "scene_io/gltf_diagnose.h"
 #include "scene_io/gltf_extensions.h"
+#include "scene_io/gltf_images.h"
 #include "scene_io/load_error.h"
 
 namespace tessera {
@@ -251,10 +252,12 @@ bool replace_unreadable_objects(Json& j, const GltfJsonContext& context, GltfDef
 }  // namespace
 
 std::optional<std::string> prepare_gltf_json(std::string_view json, const std::string& name,
-                                             const GltfJsonContext& context, GltfDefects& defects) {
+                                             const GltfJsonContext& context, GltfDefects& defects,
+                                             std::vector<DeclaredMediaTypes>& image_types) {
   Json j = Json::parse(json.begin(), json.end(), nullptr, /*allow_exceptions=*/false);
   if (!j.is_object()) return std::nullopt;
   check_required(j, name);
+  image_types = declared_media_types(j);  // first: the rewrites below replace images
   bool changed = false;
   if (json.find("EXT_meshopt_compression") != std::string_view::npos) changed |= fill_fallback_buffers(j);
   if (json.find("KHR_draco_mesh_compression") != std::string_view::npos) changed |= point_draco_indices(j);

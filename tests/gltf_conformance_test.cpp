@@ -178,6 +178,27 @@ TEST(GltfConformance, UnusedObjectsAreReadAsAWholeAndWarnedAbout) {
   }
 }
 
+// An image's media type must match its bytes (glTF 2.0, images; tools/gltf-validate.js: errors
+// INVALID_URI "The declared mediatype does not match the embedded content" for image 0,
+// IMAGE_MIME_TYPE_INVALID for images 1 and 2, UNSATISFIED_DEPENDENCY "'mimeType' must be defined"
+// for image 3). None is shown: warnings. Image 4, whose types agree, is the one the material shows.
+// Shown, each refuses the file (tests/data/malformed/image_*mime_type*.gltf,
+// image_data_uri_media_type_mismatch.gltf).
+TEST(GltfConformance, ImagesWhoseBytesContradictTheirMediaTypeAreWarningsWhenUnused) {
+  const GltfLoadResult r = load("unused_images_of_another_media_type.gltf");
+  const std::string ignored = "ignored, as the scene does not use it: image ";
+  const std::string rule = " (glTF requires the media type to match the image data)";
+  EXPECT_EQ(r.warnings, (std::vector<std::string>{
+                            ignored + "0 (data URI) is a PNG image, but its data URI declares 'image/gif'" + rule,
+                            ignored + "1 (data URI) is a PNG image, but its mimeType is 'image/jpeg'" + rule,
+                            ignored + "2 (bufferView 2) is a PNG image, but its mimeType is 'image/jpeg'" + rule,
+                            ignored + "3 is in bufferView 2 but has no mimeType (glTF requires one for an image "
+                                      "in a bufferView)"}));
+  const int shown = r.scene.materials.at(0).base_color_texture.image;
+  ASSERT_GE(shown, 0);
+  EXPECT_EQ(r.scene.images.at(shown).width, 1);  // the 1x1 red PNG, decoded
+}
+
 TEST(GltfConformance, InfoListsTheWarnings) {
   const std::string path = test::data_path("conformance/unused_invalid_objects.gltf");
   const test::CommandResult r = test::run_command(test::tessera_exe() + " info '" + path + "'");
