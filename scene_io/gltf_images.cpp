@@ -1,5 +1,6 @@
 #include "scene_io/gltf_images.h"
 
+#include <algorithm>
 #include <cstring>
 
 #include <fmt/format.h>
@@ -63,6 +64,12 @@ std::string media_type_mismatch(const tinygltf::Image& image, int index, const u
   // As the validator: mimeType compared exactly, a data URI's media type in any case (RFC 2045).
   const std::pair<const std::string*, const char*> claims[] = {{&d.data_uri, "its data URI declares"},
                                                                {&d.mime_type, "its mimeType is"}};
+  if ((format->media_type == std::string("image/webp") && !d.webp_declared) ||
+      (format->media_type == std::string("image/ktx2") && !d.ktx2_declared))
+    return fmt::format("image {} ({}) is a {} image, but extensionsUsed does not declare {} (glTF requires it for a {} "
+                       "image)",
+                       index, gltf_image_source(image), format->name,
+                       format->name == std::string("WebP") ? "EXT_texture_webp" : "KHR_texture_basisu", format->name);
   for (const auto& [type, what] : claims)
     if (!type->empty() && *type != format->media_type)
       return fmt::format("image {} ({}) is a {} image, but {} '{}' (glTF requires the media type to match the "
@@ -83,8 +90,12 @@ std::vector<DeclaredMediaTypes> declared_media_types(const nlohmann::json& gltf)
   std::vector<DeclaredMediaTypes> out;
   const auto images = gltf.find("images");
   if (images == gltf.end() || !images->is_array()) return out;
+  const auto used = gltf.find("extensionsUsed");
+  auto declared = [&](const char* name) {
+    return used != gltf.end() && used->is_array() && std::find(used->begin(), used->end(), name) != used->end();
+  };
   for (const nlohmann::json& image : *images) {
-    DeclaredMediaTypes d;
+    DeclaredMediaTypes d{"", "", declared("EXT_texture_webp"), declared("KHR_texture_basisu")};
     if (image.is_object() && image.contains("mimeType") && image["mimeType"].is_string())
       d.mime_type = image["mimeType"].get<std::string>();
     if (image.is_object() && image.contains("uri") && image["uri"].is_string())

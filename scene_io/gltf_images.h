@@ -22,6 +22,8 @@ inline constexpr const char* kUndecodableImage = "tessera/undecodable";
 struct DeclaredMediaTypes {
   std::string mime_type;
   std::string data_uri;
+  // A WebP image needs EXT_texture_webp in extensionsUsed, a KTX2 image KHR_texture_basisu.
+  bool webp_declared = false, ktx2_declared = false;
 };
 
 // By image index, from the JSON as the file gives it (before gltf_prepare.cpp rewrites it).

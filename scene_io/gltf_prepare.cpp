@@ -12,18 +12,14 @@
 #include "scene_io/gltf_diagnose.h"
 #include "scene_io/gltf_extensions.h"
 #include "scene_io/gltf_images.h"
+#include "scene_io/gltf_json.h"
+#include "scene_io/gltf_rules.h"
 #include "scene_io/load_error.h"
 
 namespace tessera {
 namespace {
 
 using Json = nlohmann::json;
-
-const Json* member(const Json& object, const char* key) {
-  if (!object.is_object()) return nullptr;
-  auto it = object.find(key);
-  return it == object.end() ? nullptr : &*it;
-}
 
 const Json* extension(const Json& object, const char* name) {
   const Json* ext = member(object, "extensions");
@@ -227,7 +223,10 @@ Json* object_array(Json& j, const std::string& array) {
 // Objects tinygltf would refuse the file for, or misread in silence (gltf_diagnose.h), become
 // placeholders with their problem in `defects`; so do images in a bufferView that did.
 bool replace_unreadable_objects(Json& j, const GltfJsonContext& context, GltfDefects& defects) {
-  const std::vector<GltfObjectProblem> problems = find_object_problems(j, context.base_dir);
+  std::vector<GltfObjectProblem> problems = find_object_problems(j, context.base_dir);
+  GltfRuleProblems rules = find_rule_problems(j);
+  problems.insert(problems.end(), rules.objects.begin(), rules.objects.end());
+  defects.notes.insert(defects.notes.end(), rules.file.begin(), rules.file.end());
   for (const GltfObjectProblem& p : problems) {
     defects.add(p.object, p.text);
     Json& object = (*object_array(j, p.array))[p.index];

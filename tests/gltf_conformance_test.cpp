@@ -199,6 +199,54 @@ TEST(GltfConformance, ImagesWhoseBytesContradictTheirMediaTypeAreWarningsWhenUnu
   EXPECT_EQ(r.scene.images.at(shown).width, 1);  // the 1x1 red PNG, decoded
 }
 
+// Rules the validator checks and tinygltf does not (scene_io/gltf_rules.*), broken in objects
+// the scene does not use, and in the file as a whole. tools/gltf-validate.js: 25 errors, one per
+// warning below (NON_REQUIRED_EXTENSION, ASSET_MIN_VERSION_GREATER_THAN_VERSION, EMPTY_ENTITY
+// twice, ACCESSOR_NORMALIZED_INVALID, ANIMATION_DUPLICATE_TARGETS, ..., IMAGE_NON_ENABLED_MIME_TYPE).
+// Used, each refuses the file (tests/data/malformed/: position_without_bounds.gltf,
+// joints_without_weights.gltf, morph_target_without_base_attribute.gltf, node_matrix_not_trs.gltf,
+// emissive_strength_negative.gltf, extension_not_declared.gltf; skin_joint_not_in_scene.gltf).
+TEST(GltfConformance, UnusedObjectsBreakingTheValidatorsRulesAreWarnings) {
+  const GltfLoadResult r = load("unused_objects_breaking_validator_rules.gltf");
+  EXPECT_EQ(triangles(r.scene), 1u);
+  const std::string ignored = "ignored, as the scene does not use it: ", empty = " (glTF requires at least one element "
+                                                                                 "where an array is given)";
+  EXPECT_EQ(r.warnings,
+            (std::vector<std::string>{
+                ignored + "material 0 occlusionTexture refers to texture 5, but the file has 1 texture",
+                ignored + "material 1: KHR_materials_emissive_strength.emissiveStrength must not be negative",
+                ignored + "material 2: KHR_materials_specular.specularFactor must be between 0 and 1",
+                "its \"samplers\" array is empty" + empty,
+                "node 4 has an empty \"children\" array" + empty,
+                "its asset minVersion 2.1 is greater than its version 2.0",
+                "its extensionsUsed lists KHR_mesh_quantization, which glTF requires in extensionsRequired too",
+                ignored + "accessor 1 is normalized, but its componentType 5126 is not a byte or short type; only "
+                          "those can be",
+                ignored + "animation 0 channels 0 and 1 both animate node 5's translation",
+                ignored + "animation 1 channel 0 animates the weights of node 5, which has no mesh with morph targets",
+                ignored + "animation 2 sampler 0 input accessor 6 has no min and max (glTF requires both)",
+                ignored + "bufferView 1 has a byteStride but holds indices (target 34963); only vertex data has one",
+                ignored + "camera 0 has both a \"perspective\" and an \"orthographic\" object; glTF allows only the "
+                          "one its type names",
+                ignored + "image 0 (bufferView 7) is a WebP image, but extensionsUsed does not declare "
+                          "EXT_texture_webp (glTF requires it for a WebP image)",
+                ignored + "material 3 has extension KHR_materials_emissive_strength in its pbrMetallicRoughness, "
+                          "where glTF does not define it",
+                ignored + "mesh 1 primitive 0 POSITION accessor 2 has no min and max (glTF requires both)",
+                ignored + "mesh 2 primitive 0 has 1 JOINTS_n and 0 WEIGHTS_n attributes; glTF requires as many of "
+                          "each",
+                ignored + "mesh 3 primitive 0 morph target 0 has NORMAL, which the primitive's attributes lack",
+                ignored + "mesh 4 primitives 0 and 1 have 1 and 0 morph targets; glTF requires the same number",
+                ignored + "mesh 5 has 2 weights but 1 morph target",
+                ignored + "node 1 has a matrix whose last row is not 0, 0, 0, 1, so not a translation, rotation and "
+                          "scale (glTF requires one)",
+                ignored + "node 2 has a skin but no mesh",
+                ignored + "node 3 has morph weights but no mesh",
+                ignored + "skin 0's joints 4 and 5 have no common root (glTF requires one)",
+                ignored + "texture 0 has extension EXT_example_undeclared, which extensionsUsed does not declare "
+                          "(glTF requires it there)"}));
+}
+
 TEST(GltfConformance, InfoListsTheWarnings) {
   const std::string path = test::data_path("conformance/unused_invalid_objects.gltf");
   const test::CommandResult r = test::run_command(test::tessera_exe() + " info '" + path + "'");
