@@ -29,4 +29,20 @@ inline long long index_of(const nlohmann::json& object, const char* key) {
   return v->is_number_unsigned() ? static_cast<long long>(v->get<std::uint64_t>()) : -2;
 }
 
+// `j[array][index]`, or null when there is no such element.
+inline const nlohmann::json& element(const nlohmann::json& j, const char* array, long long index) {
+  static const nlohmann::json none;
+  const nlohmann::json* a = member(j, array);
+  return a && a->is_array() && index >= 0 && static_cast<std::size_t>(index) < a->size() ? (*a)[index] : none;
+}
+
+// True when an accessor gives both `min` and `max`.
+inline bool has_min_max(const nlohmann::json& accessor) { return member(accessor, "min") && member(accessor, "max"); }
+
+// The number of morph targets of a mesh primitive.
+inline std::size_t morph_target_count(const nlohmann::json& primitive) {
+  const nlohmann::json* targets = member(primitive, "targets");
+  return targets && targets->is_array() ? targets->size() : 0;
+}
+
 }  // namespace tessera

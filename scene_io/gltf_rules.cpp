@@ -17,26 +17,6 @@ namespace {
 using Json = nlohmann::json;
 using Problem = std::optional<std::string>;
 
-const Json& element(const Json& j, const char* array, long long index) {
-  static const Json none;
-  const Json* a = member(j, array);
-  return a && a->is_array() && index >= 0 && static_cast<std::size_t>(index) < a->size() ? (*a)[index] : none;
-}
-
-bool has_bounds(const Json& accessor) { return member(accessor, "min") && member(accessor, "max"); }
-
-std::size_t targets_of(const Json& primitive) {
-  const Json* targets = member(primitive, "targets");
-  return targets && targets->is_array() ? targets->size() : 0;
-}
-
-// The number of attributes named PREFIX_n.
-std::size_t count_sets(const Json& attributes, const std::string& prefix) {
-  std::size_t n = 0;
-  for (auto it = attributes.begin(); it != attributes.end(); ++it) n += it.key().rfind(prefix, 0) == 0;
-  return n;
-}
-
 Problem check_accessor(const Json& a, std::size_t i, const Json&) {
   const long long type = index_of(a, "componentType");
   const Json* normalized = member(a, "normalized");
@@ -58,50 +38,6 @@ Problem check_camera(const Json& c, std::size_t i, const Json&) {
     return fmt::format("camera {} has both a \"perspective\" and an \"orthographic\" object; glTF allows only the "
                        "one its type names",
                        i);
-  return std::nullopt;
-}
-
-Problem check_primitive(const Json& prim, const std::string& what, const Json& j) {
-  const Json* attributes = member(prim, "attributes");
-  if (!attributes || !attributes->is_object()) return std::nullopt;  // gltf_diagnose.cpp's
-  const long long position = index_of(*attributes, "POSITION");
-  const Json& accessor = element(j, "accessors", position);
-  if (accessor.is_object() && !has_bounds(accessor))
-    return fmt::format("{} POSITION accessor {} has no min and max (glTF requires both)", what, position);
-  const std::size_t joints = count_sets(*attributes, "JOINTS_"), weights = count_sets(*attributes, "WEIGHTS_");
-  if (joints != weights)
-    return fmt::format("{} has {} JOINTS_n and {} WEIGHTS_n attributes; glTF requires as many of each", what, joints,
-                       weights);
-  const Json* targets = member(prim, "targets");
-  for (std::size_t t = 0; t < targets_of(prim); ++t) {
-    if (!(*targets)[t].is_object()) continue;
-    for (auto it = (*targets)[t].begin(); it != (*targets)[t].end(); ++it) {
-      if (!member(*attributes, it.key().c_str()))
-        return fmt::format("{} morph target {} has {}, which the primitive's attributes lack", what, t,
-                           shorten(it.key()));
-      const long long a = index_of((*targets)[t], it.key().c_str());
-      if (!element(j, "accessors", a).is_object())
-        return fmt::format("{} morph target {} {} refers to accessor {}, but the file has {}", what, t,
-                           shorten(it.key()), shorten(it->dump()), count_of(array_size(j, "accessors"), "accessor"));
-    }
-  }
-  return std::nullopt;
-}
-
-Problem check_mesh(const Json& mesh, std::size_t m, const Json& j) {
-  const Json* prims = member(mesh, "primitives");
-  if (!prims || !prims->is_array() || prims->empty()) return std::nullopt;  // gltf_diagnose.cpp's
-  const std::size_t targets = targets_of((*prims)[0]);
-  for (std::size_t p = 0; p < prims->size(); ++p) {
-    if (targets_of((*prims)[p]) != targets)
-      return fmt::format("mesh {} primitives 0 and {} have {} and {} morph targets; glTF requires the same number", m,
-                         p, targets, targets_of((*prims)[p]));
-    if (Problem problem = check_primitive((*prims)[p], fmt::format("mesh {} primitive {}", m, p), j)) return problem;
-  }
-  const Json* weights = member(mesh, "weights");
-  if (weights && weights->is_array() && weights->size() != targets)
-    return fmt::format("mesh {} has {} but {}", m, count_of(weights->size(), "weight"),
-                       count_of(targets, "morph target"));
   return std::nullopt;
 }
 
@@ -157,7 +93,7 @@ Problem check_skin(const Json& skin, std::size_t i, const Json& j) {
 
 bool has_morph_targets(const Json& node, const Json& j) {
   const Json* prims = member(element(j, "meshes", index_of(node, "mesh")), "primitives");
-  return prims && prims->is_array() && !prims->empty() && targets_of((*prims)[0]) > 0;
+  return prims && prims->is_array() && !prims->empty() && morph_target_count((*prims)[0]) > 0;
 }
 
 Problem check_animation(const Json& animation, std::size_t i, const Json& j) {
@@ -181,7 +117,7 @@ Problem check_animation(const Json& animation, std::size_t i, const Json& j) {
   for (std::size_t s = 0; samplers && samplers->is_array() && s < samplers->size(); ++s) {
     const long long input = index_of((*samplers)[s], "input");
     const Json& accessor = element(j, "accessors", input);
-    if (accessor.is_object() && !has_bounds(accessor))
+    if (accessor.is_object() && !has_min_max(accessor))
       return fmt::format("animation {} sampler {} input accessor {} has no min and max (glTF requires both)", i, s,
                          input);
   }
@@ -204,7 +140,7 @@ GltfRuleProblems find_rule_problems(const Json& j) {
   check_all(j, "accessors", "accessor", check_accessor, out);
   check_all(j, "bufferViews", "bufferView", check_buffer_view, out);
   check_all(j, "cameras", "camera", check_camera, out);
-  check_all(j, "meshes", "mesh", check_mesh, out);
+  check_all(j, "meshes", "mesh", check_mesh_rules, out);
   check_all(j, "nodes", "node", check_node, out);
   check_all(j, "skins", "skin", check_skin, out);
   check_all(j, "animations", "animation", check_animation, out);

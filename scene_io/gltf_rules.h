@@ -6,6 +6,7 @@
 // whole (an empty array, a minVersion above the version) is a warning.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,10 @@ struct GltfRuleProblems {
 };
 
 GltfRuleProblems find_rule_problems(const nlohmann::json& j);
+
+// Its part for mesh `m` (gltf_mesh_rules.cpp): a primitive's attributes and morph targets, the
+// mesh's bufferViews. The problem, or nullopt.
+std::optional<std::string> check_mesh_rules(const nlohmann::json& mesh, std::size_t m, const nlohmann::json& j);
 
 // Its part for the file as a whole and for extensions (gltf_file_rules.cpp): empty arrays, a
 // minVersion above the version, KHR_mesh_quantization not required, an extension object that

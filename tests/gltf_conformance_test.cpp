@@ -200,12 +200,14 @@ TEST(GltfConformance, ImagesWhoseBytesContradictTheirMediaTypeAreWarningsWhenUnu
 }
 
 // Rules the validator checks and tinygltf does not (scene_io/gltf_rules.*), broken in objects
-// the scene does not use, and in the file as a whole. tools/gltf-validate.js: 25 errors, one per
+// the scene does not use, and in the file as a whole. tools/gltf-validate.js: 31 errors, one per
 // warning below (NON_REQUIRED_EXTENSION, ASSET_MIN_VERSION_GREATER_THAN_VERSION, EMPTY_ENTITY
-// twice, ACCESSOR_NORMALIZED_INVALID, ANIMATION_DUPLICATE_TARGETS, ..., IMAGE_NON_ENABLED_MIME_TYPE).
+// twice, ACCESSOR_NORMALIZED_INVALID, ANIMATION_DUPLICATE_TARGETS, MESH_PRIMITIVE_ACCESSOR_UNALIGNED,
+// BUFFER_VIEW_TARGET_OVERRIDE, ..., IMAGE_NON_ENABLED_MIME_TYPE).
 // Used, each refuses the file (tests/data/malformed/: position_without_bounds.gltf,
 // joints_without_weights.gltf, morph_target_without_base_attribute.gltf, node_matrix_not_trs.gltf,
-// emissive_strength_negative.gltf, extension_not_declared.gltf; skin_joint_not_in_scene.gltf).
+// emissive_strength_negative.gltf, extension_not_declared.gltf,
+// vertex_accessors_share_view_without_stride.gltf; skin_joint_not_in_scene.gltf).
 TEST(GltfConformance, UnusedObjectsBreakingTheValidatorsRulesAreWarnings) {
   const GltfLoadResult r = load("unused_objects_breaking_validator_rules.gltf");
   EXPECT_EQ(triangles(r.scene), 1u);
@@ -224,20 +226,32 @@ TEST(GltfConformance, UnusedObjectsBreakingTheValidatorsRulesAreWarnings) {
                           "those can be",
                 ignored + "animation 0 channels 0 and 1 both animate node 5's translation",
                 ignored + "animation 1 channel 0 animates the weights of node 5, which has no mesh with morph targets",
-                ignored + "animation 2 sampler 0 input accessor 6 has no min and max (glTF requires both)",
+                ignored + "animation 2 sampler 0 input accessor 14 has no min and max (glTF requires both)",
                 ignored + "bufferView 1 has a byteStride but holds indices (target 34963); only vertex data has one",
                 ignored + "camera 0 has both a \"perspective\" and an \"orthographic\" object; glTF allows only the "
                           "one its type names",
-                ignored + "image 0 (bufferView 7) is a WebP image, but extensionsUsed does not declare "
+                ignored + "image 0 (bufferView 13) is a WebP image, but extensionsUsed does not declare "
                           "EXT_texture_webp (glTF requires it for a WebP image)",
                 ignored + "material 3 has extension KHR_materials_emissive_strength in its pbrMetallicRoughness, "
                           "where glTF does not define it",
                 ignored + "mesh 1 primitive 0 POSITION accessor 2 has no min and max (glTF requires both)",
+                ignored + "mesh 10 primitive 0 morph target 0 POSITION accessor 9 has 2 elements, but the "
+                          "primitive's POSITION has 3",
+                ignored + "mesh 11 uses bufferView 9 for both vertex attributes and indices (primitive 0); glTF "
+                          "requires separate views",
                 ignored + "mesh 2 primitive 0 has 1 JOINTS_n and 0 WEIGHTS_n attributes; glTF requires as many of "
                           "each",
                 ignored + "mesh 3 primitive 0 morph target 0 has NORMAL, which the primitive's attributes lack",
                 ignored + "mesh 4 primitives 0 and 1 have 1 and 0 morph targets; glTF requires the same number",
                 ignored + "mesh 5 has 2 weights but 1 morph target",
+                ignored + "mesh 6 primitive 0 _ID accessor 4 has componentType UNSIGNED_INT (5125), which glTF "
+                          "allows only for indices",
+                ignored + "mesh 7 primitive 0 COLOR_0 accessor 5 has byteOffset 2 in its bufferView, not a multiple "
+                          "of 4 (glTF requires one for vertex data)",
+                ignored + "mesh 8 reads accessors 6 and 7 from bufferView 6, which has no byteStride (glTF requires "
+                          "one when vertex accessors share a view)",
+                ignored + "mesh 9 primitive 0 indices accessor 8 is in bufferView 7, which has a byteStride (glTF "
+                          "forbids one for indices)",
                 ignored + "node 1 has a matrix whose last row is not 0, 0, 0, 1, so not a translation, rotation and "
                           "scale (glTF requires one)",
                 ignored + "node 2 has a skin but no mesh",
