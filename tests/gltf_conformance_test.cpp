@@ -261,6 +261,16 @@ TEST(GltfConformance, UnusedObjectsBreakingTheValidatorsRulesAreWarnings) {
                           "(glTF requires it there)"}));
 }
 
+// Keyframe times whose accessor has no bufferView are zeros, which the validator accepts (0
+// errors) although they do not increase; the node they move shows a mesh, so the animation is
+// used. It loads, its two keys at 0.
+TEST(GltfConformance, KeyframeTimesWithoutABufferViewLoad) {
+  const GltfLoadResult r = load("keyframe_times_without_bufferview.gltf");
+  EXPECT_EQ(triangles(r.scene), 1u);
+  EXPECT_EQ(r.warnings, std::vector<std::string>{});
+  EXPECT_EQ(r.animations.at(0).channels.at(0).times, (std::vector<float>{0, 0}));
+}
+
 TEST(GltfConformance, InfoListsTheWarnings) {
   const std::string path = test::data_path("conformance/unused_invalid_objects.gltf");
   const test::CommandResult r = test::run_command(test::tessera_exe() + " info '" + path + "'");
