@@ -120,6 +120,10 @@ Problem check_animation(const Json& animation, std::size_t i, const Json& j) {
     if (accessor.is_object() && !has_min_max(accessor))
       return fmt::format("animation {} sampler {} input accessor {} has no min and max (glTF requires both)", i, s,
                          input);
+    const Json* interpolation = member((*samplers)[s], "interpolation");
+    if (accessor.is_object() && interpolation && *interpolation == "CUBICSPLINE" && index_of(accessor, "count") < 2)
+      return fmt::format("animation {} sampler {} is CUBICSPLINE with {}; glTF requires at least 2", i, s,
+                         count_of(static_cast<std::size_t>(std::max(index_of(accessor, "count"), 0LL)), "keyframe"));
   }
   return std::nullopt;
 }

@@ -200,10 +200,11 @@ TEST(GltfConformance, ImagesWhoseBytesContradictTheirMediaTypeAreWarningsWhenUnu
 }
 
 // Rules the validator checks and tinygltf does not (scene_io/gltf_rules.*), broken in objects
-// the scene does not use, and in the file as a whole. tools/gltf-validate.js: 31 errors, one per
+// the scene does not use, and in the file as a whole. tools/gltf-validate.js: 32 errors, one per
 // warning below (NON_REQUIRED_EXTENSION, ASSET_MIN_VERSION_GREATER_THAN_VERSION, EMPTY_ENTITY
 // twice, ACCESSOR_NORMALIZED_INVALID, ANIMATION_DUPLICATE_TARGETS, MESH_PRIMITIVE_ACCESSOR_UNALIGNED,
-// BUFFER_VIEW_TARGET_OVERRIDE, ..., IMAGE_NON_ENABLED_MIME_TYPE).
+// BUFFER_VIEW_TARGET_OVERRIDE, ANIMATION_SAMPLER_INPUT_ACCESSOR_TOO_FEW_ELEMENTS, ...,
+// IMAGE_NON_ENABLED_MIME_TYPE).
 // Used, each refuses the file (tests/data/malformed/: position_without_bounds.gltf,
 // joints_without_weights.gltf, morph_target_without_base_attribute.gltf, node_matrix_not_trs.gltf,
 // emissive_strength_negative.gltf, extension_not_declared.gltf,
@@ -227,10 +228,11 @@ TEST(GltfConformance, UnusedObjectsBreakingTheValidatorsRulesAreWarnings) {
                 ignored + "animation 0 channels 0 and 1 both animate node 5's translation",
                 ignored + "animation 1 channel 0 animates the weights of node 5, which has no mesh with morph targets",
                 ignored + "animation 2 sampler 0 input accessor 14 has no min and max (glTF requires both)",
+                ignored + "animation 3 sampler 0 is CUBICSPLINE with 1 keyframe; glTF requires at least 2",
                 ignored + "bufferView 1 has a byteStride but holds indices (target 34963); only vertex data has one",
                 ignored + "camera 0 has both a \"perspective\" and an \"orthographic\" object; glTF allows only the "
                           "one its type names",
-                ignored + "image 0 (bufferView 13) is a WebP image, but extensionsUsed does not declare "
+                ignored + "image 0 (bufferView 15) is a WebP image, but extensionsUsed does not declare "
                           "EXT_texture_webp (glTF requires it for a WebP image)",
                 ignored + "material 3 has extension KHR_materials_emissive_strength in its pbrMetallicRoughness, "
                           "where glTF does not define it",
