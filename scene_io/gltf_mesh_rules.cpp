@@ -1,5 +1,6 @@
 // The meshes' part of gltf_rules.h.
 #include <algorithm>
+#include <iterator>
 #include <map>
 #include <optional>
 #include <set>

@@ -1,7 +1,6 @@
 #include "scene_io/gltf_rules.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <functional>
 #include <map>
 #include <optional>
