@@ -59,9 +59,14 @@ AnimationChannel read_channel(const tinygltf::Model& model, const tinygltf::Anim
                      gltf_component_type_name(input.componentType), gltf_type_name(input.type)));
   c.times = reader.floats(sampler.input, 1, what + " input");
   if (c.times.empty()) fail("has no keyframes");
-  for (std::size_t k = 0; k < c.times.size(); ++k)
-    if (!std::isfinite(c.times[k]) || (k > 0 && !(c.times[k] > c.times[k - 1])))
+  // Times without data are zeros, which the validator accepts: equal times are then allowed
+  // (sampling never interpolates across an empty interval).
+  const bool stored = input.bufferView >= 0 || input.sparse.isSparse;
+  for (std::size_t k = 0; k < c.times.size(); ++k) {
+    const bool increasing = k == 0 || c.times[k] > c.times[k - 1] || (!stored && c.times[k] == c.times[k - 1]);
+    if (!std::isfinite(c.times[k]) || !increasing)
       fail(fmt::format("has keyframe times that are not finite and strictly increasing (key {})", k));
+  }
   const int groups = c.interpolation == Interpolation::CubicSpline ? 3 : 1;
   const std::size_t keys = c.times.size() * groups;
   c.width = path_width(c.path);

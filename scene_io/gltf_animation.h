@@ -23,7 +23,7 @@ struct AnimationChannel {
   int node = -1;
   AnimationPath path = AnimationPath::Translation;
   Interpolation interpolation = Interpolation::Linear;
-  std::vector<float> times;  // seconds, strictly increasing
+  std::vector<float> times;  // seconds, strictly increasing (or all zero: an input accessor without data)
   // `width` floats per key (3, 4 or the morph target count); CUBICSPLINE stores three such
   // groups per key: in-tangent, value, out-tangent.
   std::vector<float> values;

@@ -83,6 +83,13 @@ std::optional<std::vector<std::uint8_t>> base64_decoded(std::string text, std::s
 
 bool is_data_uri(const std::string& uri) { return uri.rfind("data:", 0) == 0; }
 
+std::string data_uri_media_type(const std::string& uri) {
+  if (!is_data_uri(uri)) return "";
+  std::string type = uri.substr(5, std::min(uri.find(';'), uri.find(',')) - 5);
+  for (char& c : type) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));  // RFC 2045
+  return type;
+}
+
 std::optional<DataUri> decode_data_uri(const std::string& uri, std::string& problem) {
   const std::size_t comma = uri.find(',');
   if (!is_data_uri(uri) || comma == std::string::npos) {
@@ -92,8 +99,7 @@ std::optional<DataUri> decode_data_uri(const std::string& uri, std::string& prob
   const std::string header = uri.substr(5, comma - 5);
   const bool base64 = header.size() >= 7 && header.compare(header.size() - 7, 7, ";base64") == 0;
   DataUri out;
-  out.media_type = header.substr(0, header.find(';'));
-  for (char& c : out.media_type) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));  // RFC 2045
+  out.media_type = data_uri_media_type(uri);
   // Between the media type and ";base64", only attribute=value parameters.
   const std::size_t params_end = base64 ? header.size() - 7 : header.size();
   for (std::size_t at = header.find(';'); at < params_end;) {

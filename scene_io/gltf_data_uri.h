@@ -19,6 +19,10 @@ struct DataUri {
 // True when `uri` starts with "data:".
 bool is_data_uri(const std::string& uri);
 
+// The media type of data URI `uri`, lower case (RFC 2045); empty when it gives none. Reads
+// only the header, so it costs nothing for a large URI.
+std::string data_uri_media_type(const std::string& uri);
+
 // The URI decoded, or nullopt with `problem` set to what is wrong, worded to follow
 // "buffer 0 has a data URI " ("that is not valid base64 (character 4 of its data is '!')").
 std::optional<DataUri> decode_data_uri(const std::string& uri, std::string& problem);

@@ -16,6 +16,7 @@
 #include <tiny_gltf.h>
 
 #include "scene_io/gltf_data_uri.h"
+#include "scene_io/gltf_json.h"
 #include "scene_io/load_error.h"
 
 namespace tessera {
@@ -24,30 +25,6 @@ namespace {
 namespace fs = std::filesystem;
 using Json = nlohmann::json;
 using Problem = std::optional<std::string>;
-
-std::string shorten(const std::string& s, std::size_t most = 60) {
-  return s.size() <= most ? s : s.substr(0, most - 3) + "...";
-}
-
-const Json* member(const Json& object, const char* key) {
-  if (!object.is_object()) return nullptr;
-  auto it = object.find(key);
-  return it == object.end() ? nullptr : &*it;
-}
-
-std::size_t array_size(const Json& j, const char* key) {
-  const Json* a = member(j, key);
-  return a && a->is_array() ? a->size() : 0;
-}
-
-// An optional index property: -1 when absent, -2 when present but not a valid index.
-long long index_of(const Json& object, const char* key) {
-  const Json* v = member(object, key);
-  if (!v) return -1;
-  // (A number this program wrote into the JSON is signed: gltf_prepare.cpp's placeholders.)
-  if (v->is_number_integer() && !v->is_number_unsigned()) return v->get<std::int64_t>() >= 0 ? v->get<std::int64_t>() : -2;
-  return v->is_number_unsigned() ? static_cast<long long>(v->get<std::uint64_t>()) : -2;
-}
 
 // Media types whose data URIs tessera reads (tinygltf's, and WebP images).
 bool readable_media_type(const std::string& type) {
@@ -72,19 +49,8 @@ Problem check_data_uri(const std::string& what, const std::string& uri,
   return std::nullopt;
 }
 
-// The arrays of objects a glTF file holds, and what one of their objects is called.
-struct ObjectArray {
-  const char* key;
-  const char* noun;
-};
-constexpr ObjectArray kArrays[] = {
-    {"buffers", "buffer"},     {"bufferViews", "bufferView"}, {"accessors", "accessor"}, {"meshes", "mesh"},
-    {"nodes", "node"},         {"scenes", "scene"},           {"materials", "material"}, {"images", "image"},
-    {"textures", "texture"},   {"samplers", "sampler"},       {"cameras", "camera"},     {"skins", "skin"},
-    {"animations", "animation"}};
-
 Problem check_arrays(const Json& j) {
-  for (const auto& [key, noun] : kArrays) {
+  for (const auto& [key, noun] : kGltfArrays) {
     const Json* a = member(j, key);
     if (a && !a->is_array()) return fmt::format("its \"{}\" is not a JSON array", key);
   }
@@ -277,6 +243,9 @@ Problem check_image(const Json& image, std::size_t i, std::size_t views) {
   if (!uri && (view < 0 || view >= static_cast<long long>(views)))
     return fmt::format("{} refers to bufferView {}, but the file has {}", what,
                        shorten(member(image, "bufferView")->dump()), count_of(views, "bufferView"));
+  if (!uri && !member(image, "mimeType"))
+    return fmt::format("{} is in bufferView {} but has no mimeType (glTF requires one for an image in a bufferView)",
+                       what, view);
   return std::nullopt;
 }
 
@@ -427,7 +396,7 @@ std::vector<GltfObjectProblem> find_object_problems(const nlohmann::json& j, con
   };
   const std::size_t views = array_size(j, "bufferViews");
   const auto none = [](const Json&, std::size_t) { return Problem(); };
-  for (const auto& [key, noun] : kArrays) {
+  for (const auto& [key, noun] : kGltfArrays) {
     const Json* array = member(j, key);
     const std::string k = key;
     if (k == "buffers") check_all(key, noun, array, [&](const Json& b, std::size_t i) { return check_buffer(b, i, base_dir); });

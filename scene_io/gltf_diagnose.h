@@ -20,6 +20,17 @@ struct GltfDiagnoseInput {
   std::string base_dir;  // where external files are looked up
 };
 
+// The arrays of objects a glTF file holds, and what one of their objects is called.
+struct GltfObjectArray {
+  const char* key;
+  const char* noun;
+};
+inline constexpr GltfObjectArray kGltfArrays[] = {
+    {"buffers", "buffer"},     {"bufferViews", "bufferView"}, {"accessors", "accessor"}, {"meshes", "mesh"},
+    {"nodes", "node"},         {"scenes", "scene"},           {"materials", "material"}, {"images", "image"},
+    {"textures", "texture"},   {"samplers", "sampler"},       {"cameras", "camera"},     {"skins", "skin"},
+    {"animations", "animation"}};
+
 // One line without the file name, or nullopt when nothing specific is found.
 std::optional<std::string> diagnose_gltf_json(const GltfDiagnoseInput& in);
 

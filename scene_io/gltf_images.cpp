@@ -8,6 +8,7 @@
 #include <tbb/parallel_for.h>
 #include <webp/decode.h>
 
+#include "scene_io/gltf_data_uri.h"
 #include "scene_io/gltf_jpeg.h"
 #include "scene_io/load_error.h"
 
@@ -39,6 +40,46 @@ bool decode_webp(tinygltf::Image* image, const unsigned char* bytes, int size) {
   return true;
 }
 
+struct ImageFormat {
+  const char* media_type;
+  const char* name;
+};
+
+// The format the validator recognises `bytes` as, by their signature; nullptr for none of these.
+const ImageFormat* recognised_format(const unsigned char* b, int size) {
+  static const ImageFormat png{"image/png", "PNG"}, jpeg{"image/jpeg", "JPEG"}, webp{"image/webp", "WebP"},
+      ktx2{"image/ktx2", "KTX2"};
+  static const unsigned char png_signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+  if (size >= 8 && std::memcmp(b, png_signature, 8) == 0) return &png;
+  if (size >= 3 && b[0] == 0xFF && b[1] == 0xD8 && b[2] == 0xFF) return &jpeg;
+  if (is_webp(b, size)) return &webp;
+  if (is_ktx2(b, size)) return &ktx2;
+  return nullptr;
+}
+
+// Why image `index`'s bytes contradict a media type it declares; empty when they do not.
+std::string media_type_mismatch(const tinygltf::Image& image, int index, const unsigned char* bytes, int size,
+                                const std::vector<DeclaredMediaTypes>& declared) {
+  const ImageFormat* format = recognised_format(bytes, size);
+  if (!format || index < 0 || static_cast<std::size_t>(index) >= declared.size()) return "";
+  const DeclaredMediaTypes& d = declared[static_cast<std::size_t>(index)];
+  // As the validator: mimeType compared exactly, a data URI's media type in any case (RFC 2045).
+  const std::pair<const std::string*, const char*> claims[] = {{&d.data_uri, "its data URI declares"},
+                                                               {&d.mime_type, "its mimeType is"}};
+  if ((format->media_type == std::string("image/webp") && !d.webp_declared) ||
+      (format->media_type == std::string("image/ktx2") && !d.ktx2_declared))
+    return fmt::format("image {} ({}) is a {} image, but extensionsUsed does not declare {} (glTF requires it for a {} "
+                       "image)",
+                       index, gltf_image_source(image), format->name,
+                       format->name == std::string("WebP") ? "EXT_texture_webp" : "KHR_texture_basisu", format->name);
+  for (const auto& [type, what] : claims)
+    if (!type->empty() && *type != format->media_type)
+      return fmt::format("image {} ({}) is a {} image, but {} '{}' (glTF requires the media type to match the "
+                         "image data)",
+                         index, gltf_image_source(image), format->name, what, shorten(*type, 40));
+  return "";
+}
+
 int extension_source(const tinygltf::Texture& tex, const char* name) {
   auto it = tex.extensions.find(name);
   if (it == tex.extensions.end() || !it->second.Has("source") || !it->second.Get("source").IsNumber()) return -1;
@@ -58,13 +99,38 @@ std::string decode_image(tinygltf::Image* image, int index, const unsigned char*
 
 }  // namespace
 
+std::vector<DeclaredMediaTypes> declared_media_types(const nlohmann::json& gltf) {
+  std::vector<DeclaredMediaTypes> out;
+  const auto images = gltf.find("images");
+  if (images == gltf.end() || !images->is_array()) return out;
+  const auto used = gltf.find("extensionsUsed");
+  auto declared = [&](const char* name) {
+    return used != gltf.end() && used->is_array() && std::find(used->begin(), used->end(), name) != used->end();
+  };
+  for (const nlohmann::json& image : *images) {
+    DeclaredMediaTypes d{"", "", declared("EXT_texture_webp"), declared("KHR_texture_basisu")};
+    if (image.is_object() && image.contains("mimeType") && image["mimeType"].is_string())
+      d.mime_type = image["mimeType"].get<std::string>();
+    if (image.is_object() && image.contains("uri") && image["uri"].is_string())
+      d.data_uri = data_uri_media_type(image["uri"].get_ref<const std::string&>());
+    out.push_back(std::move(d));
+  }
+  return out;
+}
+
 bool load_gltf_image(tinygltf::Image* image, const int index, std::string* err, std::string* warn, int width,
                      int height, const unsigned char* bytes, int size, void* user) {
+  auto* ctx = static_cast<ImageLoadContext*>(user);
+  if (std::string problem = media_type_mismatch(*image, index, bytes, size, ctx->declared); !problem.empty()) {
+    ctx->defective.emplace_back(index, std::move(problem));  // refused when a texture shows it
+    image->mimeType = kUndecodableImage;
+    return true;
+  }
   if (is_ktx2(bytes, size)) {  // no decoder: textures use their fallback (texture_image)
     image->mimeType = "image/ktx2";
     return true;
   }
-  static_cast<ImageLoadContext*>(user)->pending.push_back({index, std::vector<unsigned char>(bytes, bytes + size)});
+  ctx->pending.push_back({index, std::vector<unsigned char>(bytes, bytes + size)});
   (void)err, (void)warn, (void)width, (void)height;
   return true;
 }
@@ -89,12 +155,12 @@ void decode_pending_images(tinygltf::Model& model, ImageLoadContext& ctx) {
     image->mimeType = kUndecodableImage;
   });
   for (std::size_t k = 0; k < problems.size(); ++k)
-    if (!problems[k].empty()) ctx.undecodable.emplace_back(ctx.pending[k].index, problems[k]);
+    if (!problems[k].empty()) ctx.defective.emplace_back(ctx.pending[k].index, problems[k]);
   ctx.pending.clear();
 }
 
 std::string gltf_image_source(const tinygltf::Image& image) {
-  if (!image.uri.empty()) return image.uri.size() > 60 ? image.uri.substr(0, 57) + "..." : image.uri;
+  if (!image.uri.empty()) return shorten(image.uri);
   if (image.bufferView >= 0) return fmt::format("bufferView {}", image.bufferView);
   return "data URI";
 }

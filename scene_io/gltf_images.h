@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
 #include "scene_io/gltf_defects.h"
@@ -15,26 +16,42 @@ namespace tessera {
 // The mimeType of an image tessera cannot decode: left empty, refused when a texture shows it.
 inline constexpr const char* kUndecodableImage = "tessera/undecodable";
 
+// The media types an image declares, each empty when not given: its `mimeType`, and the
+// media type of its data URI. glTF requires each to match the image's bytes (the validator's
+// IMAGE_MIME_TYPE_INVALID and INVALID_URI errors).
+struct DeclaredMediaTypes {
+  std::string mime_type;
+  std::string data_uri;
+  // A WebP image needs EXT_texture_webp in extensionsUsed, a KTX2 image KHR_texture_basisu.
+  bool webp_declared = false, ktx2_declared = false;
+};
+
+// By image index, from the JSON as the file gives it (before gltf_prepare.cpp rewrites it).
+std::vector<DeclaredMediaTypes> declared_media_types(const nlohmann::json& gltf);
+
 // What the image callback saw: the encoded bytes of the images to decode (by index, decoded
-// afterwards and in parallel by decode_pending_images), and the images that could not be.
+// afterwards and in parallel by decode_pending_images), and the images that could not be, or
+// whose bytes contradict what they declare (`declared`, filled before tinygltf reads the file).
 struct ImageLoadContext {
   struct Pending {
     int index;
     std::vector<unsigned char> bytes;
   };
+  std::vector<DeclaredMediaTypes> declared;
   std::vector<Pending> pending;
-  std::vector<std::pair<int, std::string>> undecodable;
+  std::vector<std::pair<int, std::string>> defective;
 };
 
 // tinygltf's LoadImageDataFunction; `user` is an ImageLoadContext. It keeps the bytes for
 // decode_pending_images: tinygltf calls it image after image, and decoding a model's
-// textures one by one was most of its load time (DamagedHelmet: five 2048^2 images).
+// textures one by one was most of its load time (DamagedHelmet: five 2048^2 images). An image
+// of a recognised format (PNG, JPEG, WebP, KTX2) other than it declares goes to ctx.defective.
 bool load_gltf_image(tinygltf::Image* image, int index, std::string* err, std::string* warn, int width, int height,
                      const unsigned char* bytes, int size, void* user);
 
 // Decodes the images load_gltf_image kept, each by the decoder its bytes' signature picks
 // (JPEG: libjpeg-turbo; WebP: libwebp; else tinygltf's stb_image, for PNG), in parallel
-// (TBB), largest first; each one it cannot decode goes to ctx.undecodable, in index order.
+// (TBB), largest first; each one it cannot decode goes to ctx.defective, in index order.
 void decode_pending_images(tinygltf::Model& model, ImageLoadContext& ctx);
 
 // "textures/a.png", "bufferView 3" or "data URI": where an image's bytes are, for messages.

@@ -73,6 +73,8 @@ class Converter {
           used.animations[a], fmt::format("animation {}", a), file_, warnings_,
           [&] { return read_animation(model_, a, reader_, file_); }, result_.animations[a]);
     for (std::size_t s = 0; s < model_.skins.size(); ++s)
+      if (used.skins[s]) check_joints_in_scene(s, used);
+    for (std::size_t s = 0; s < model_.skins.size(); ++s)
       result_.skins.push_back(defects_.read_object(used.skins[s], fmt::format("skin {}", s), file_, warnings_,
                                                    [&] { return read_skin(model_, s, reader_, file_); },
                                                    Skin{skin_name(model_, s), {}, {}, -1}));
@@ -89,6 +91,15 @@ class Converter {
   }
 
  private:
+  // A used skin's joints must be in the scene that uses it (the validator's NODE_SKIN_NO_SCENE).
+  void check_joints_in_scene(std::size_t s, const GltfUsage& used) const {
+    for (int j : model_.skins[s].joints)
+      if (j >= 0 && static_cast<std::size_t>(j) < used.nodes.size() && !used.nodes[j])
+        throw SceneLoadError(file_, fmt::format("skin {} has joint node {}, which is not in the scene (glTF requires "
+                                                "a skin's joints in the scene of the node it skins)",
+                                                s, j));
+  }
+
   [[noreturn]] void fail(const std::string& problem) const { throw SceneLoadError(file_, problem); }
 
   // True when a primitive of a used mesh has KHR_materials_variants mappings.

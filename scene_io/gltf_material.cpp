@@ -90,6 +90,12 @@ Material convert_material(const tinygltf::Model& model, std::size_t i, const std
   mat.emissive_texture = ref(m.emissiveTexture, "emissiveTexture");
   if (auto it = m.extensions.find("KHR_materials_emissive_strength"); it != m.extensions.end())
     mat.emissive_strength = static_cast<float>(number_of(it->second, "emissiveStrength", 1.0));
+  if (!(mat.emissive_strength >= 0.0f))
+    throw SceneLoadError(file, what + ": KHR_materials_emissive_strength.emissiveStrength must not be negative");
+  // tessera ignores occlusion (a path tracer traces it), but glTF requires the reference to resolve.
+  if (m.occlusionTexture.index >= static_cast<int>(model.textures.size()))
+    throw SceneLoadError(file, fmt::format("{} occlusionTexture refers to texture {}, but the file has {}", what,
+                                           m.occlusionTexture.index, count_of(model.textures.size(), "texture")));
   mat.alpha_mode = m.alphaMode == "MASK"    ? AlphaMode::Mask
                    : m.alphaMode == "BLEND" ? AlphaMode::Blend
                                             : AlphaMode::Opaque;

@@ -66,6 +66,10 @@ void read_material_extensions(const tinygltf::Material& src, const TextureResolv
     mat.specular_texture = texture(*e, "specularTexture", resolve);
     mat.specular_color_factor = color(*e, "specularColorFactor", glm::vec3(1.0f));
     mat.specular_color_texture = texture(*e, "specularColorTexture", resolve);
+    if (!(mat.specular_factor >= 0.0f && mat.specular_factor <= 1.0f))
+      fail("KHR_materials_specular.specularFactor must be between 0 and 1");
+    if (!(glm::all(glm::greaterThanEqual(mat.specular_color_factor, glm::vec3(0.0f)))))
+      fail("KHR_materials_specular.specularColorFactor must not be negative");
   }
   if (const tinygltf::Value* e = extension(src, "KHR_materials_clearcoat")) {
     mat.clearcoat_factor = number(*e, "clearcoatFactor", 0.0f);

@@ -89,8 +89,9 @@ tinygltf::Model parse_gltf(const std::vector<std::uint8_t>& bytes, const std::st
   if (bytes.size() > std::numeric_limits<unsigned>::max())
     throw SceneLoadError(name, "is larger than 4 GiB, more than tinygltf can read");
   // Compressed files: tinygltf reads a rewritten JSON (gltf_prepare.h), in a rebuilt .glb.
-  const std::optional<std::string> prepared =
-      prepare_gltf_json(container.json, name, {container.binary, container.bin_chunk_size, base_dir}, defects);
+  ImageLoadContext ctx;
+  const std::optional<std::string> prepared = prepare_gltf_json(
+      container.json, name, {container.binary, container.bin_chunk_size, base_dir}, defects, ctx.declared);
   std::vector<std::uint8_t> rebuilt;
   if (prepared) {
     rebuilt = container.binary ? replace_glb_json(bytes, *prepared)
@@ -98,7 +99,6 @@ tinygltf::Model parse_gltf(const std::vector<std::uint8_t>& bytes, const std::st
     container = check_gltf_container(rebuilt, name);
   }
   const std::vector<std::uint8_t>& input = prepared ? rebuilt : bytes;
-  ImageLoadContext ctx;
   tinygltf::TinyGLTF parser;
   parser.SetFsCallbacks({&file_exists, &expand_file_path, &read_whole_file, &write_whole_file, &ctx});
   parser.SetImageLoader(&load_gltf_image, &ctx);
@@ -126,7 +126,7 @@ tinygltf::Model parse_gltf(const std::vector<std::uint8_t>& bytes, const std::st
     throw SceneLoadError(name, fmt::format("is glTF version '{}'; tessera reads version 2.x",
                                            model.asset.version));
   decode_pending_images(model, ctx);
-  for (const auto& [index, problem] : ctx.undecodable) defects.add(fmt::format("image {}", index), problem);
+  for (const auto& [index, problem] : ctx.defective) defects.add(fmt::format("image {}", index), problem);
   check_external_images(model, base_dir, defects);
   restore_placeholders(model, defects);
   decode_meshopt_views(model, name);  // first: a Draco stream may sit in a meshopt view

@@ -11,18 +11,15 @@
 #include "scene_io/gltf_defects.h"
 #include "scene_io/gltf_diagnose.h"
 #include "scene_io/gltf_extensions.h"
+#include "scene_io/gltf_images.h"
+#include "scene_io/gltf_json.h"
+#include "scene_io/gltf_rules.h"
 #include "scene_io/load_error.h"
 
 namespace tessera {
 namespace {
 
 using Json = nlohmann::json;
-
-const Json* member(const Json& object, const char* key) {
-  if (!object.is_object()) return nullptr;
-  auto it = object.find(key);
-  return it == object.end() ? nullptr : &*it;
-}
 
 const Json* extension(const Json& object, const char* name) {
   const Json* ext = member(object, "extensions");
@@ -226,7 +223,10 @@ Json* object_array(Json& j, const std::string& array) {
 // Objects tinygltf would refuse the file for, or misread in silence (gltf_diagnose.h), become
 // placeholders with their problem in `defects`; so do images in a bufferView that did.
 bool replace_unreadable_objects(Json& j, const GltfJsonContext& context, GltfDefects& defects) {
-  const std::vector<GltfObjectProblem> problems = find_object_problems(j, context.base_dir);
+  std::vector<GltfObjectProblem> problems = find_object_problems(j, context.base_dir);
+  GltfRuleProblems rules = find_rule_problems(j);
+  problems.insert(problems.end(), rules.objects.begin(), rules.objects.end());
+  defects.notes.insert(defects.notes.end(), rules.file.begin(), rules.file.end());
   for (const GltfObjectProblem& p : problems) {
     defects.add(p.object, p.text);
     Json& object = (*object_array(j, p.array))[p.index];
@@ -251,10 +251,12 @@ bool replace_unreadable_objects(Json& j, const GltfJsonContext& context, GltfDef
 }  // namespace
 
 std::optional<std::string> prepare_gltf_json(std::string_view json, const std::string& name,
-                                             const GltfJsonContext& context, GltfDefects& defects) {
+                                             const GltfJsonContext& context, GltfDefects& defects,
+                                             std::vector<DeclaredMediaTypes>& image_types) {
   Json j = Json::parse(json.begin(), json.end(), nullptr, /*allow_exceptions=*/false);
   if (!j.is_object()) return std::nullopt;
   check_required(j, name);
+  image_types = declared_media_types(j);  // first: the rewrites below replace images
   bool changed = false;
   if (json.find("EXT_meshopt_compression") != std::string_view::npos) changed |= fill_fallback_buffers(j);
   if (json.find("KHR_draco_mesh_compression") != std::string_view::npos) changed |= point_draco_indices(j);

@@ -17,10 +17,12 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace tessera {
 
 struct GltfDefects;
+struct DeclaredMediaTypes;
 
 // The primitive extension an indices accessor without a bufferView is moved to, as
 // {"accessor": index}, which tinygltf refuses as `indices`; gltf_parse.cpp moves it back.
@@ -36,8 +38,10 @@ struct GltfJsonContext {
 
 // Throws SceneLoadError(display_name, ...) for an unsupported required extension. Returns
 // the rewritten JSON, or nullopt when tinygltf can read `json` as it is (or it is not JSON,
-// which tinygltf then reports).
+// which tinygltf then reports). `image_types` gets the media types the images declare, as the
+// file gives them (gltf_images.h).
 std::optional<std::string> prepare_gltf_json(std::string_view json, const std::string& display_name,
-                                             const GltfJsonContext& context, GltfDefects& defects);
+                                             const GltfJsonContext& context, GltfDefects& defects,
+                                             std::vector<DeclaredMediaTypes>& image_types);
 
 }  // namespace tessera

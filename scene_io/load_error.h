@@ -28,4 +28,9 @@ inline std::string count_of(std::size_t n, const std::string& noun, std::string 
   return std::to_string(n) + " " + (n == 1 ? noun : plural);
 }
 
+// `s` cut to at most `most` characters, for quoting a value of the file in a message.
+inline std::string shorten(const std::string& s, std::size_t most = 60) {
+  return s.size() <= most ? s : s.substr(0, most - 3) + "...";
+}
+
 }  // namespace tessera

@@ -178,6 +178,101 @@ TEST(GltfConformance, UnusedObjectsAreReadAsAWholeAndWarnedAbout) {
   }
 }
 
+// An image's media type must match its bytes (glTF 2.0, images; tools/gltf-validate.js: errors
+// INVALID_URI "The declared mediatype does not match the embedded content" for image 0,
+// IMAGE_MIME_TYPE_INVALID for images 1 and 2, UNSATISFIED_DEPENDENCY "'mimeType' must be defined"
+// for image 3). None is shown: warnings. Image 4, whose types agree, is the one the material shows.
+// Shown, each refuses the file (tests/data/malformed/image_*mime_type*.gltf,
+// image_data_uri_media_type_mismatch.gltf).
+TEST(GltfConformance, ImagesWhoseBytesContradictTheirMediaTypeAreWarningsWhenUnused) {
+  const GltfLoadResult r = load("unused_images_of_another_media_type.gltf");
+  const std::string ignored = "ignored, as the scene does not use it: image ";
+  const std::string rule = " (glTF requires the media type to match the image data)";
+  EXPECT_EQ(r.warnings, (std::vector<std::string>{
+                            ignored + "0 (data URI) is a PNG image, but its data URI declares 'image/gif'" + rule,
+                            ignored + "1 (data URI) is a PNG image, but its mimeType is 'image/jpeg'" + rule,
+                            ignored + "2 (bufferView 2) is a PNG image, but its mimeType is 'image/jpeg'" + rule,
+                            ignored + "3 is in bufferView 2 but has no mimeType (glTF requires one for an image "
+                                      "in a bufferView)"}));
+  const int shown = r.scene.materials.at(0).base_color_texture.image;
+  ASSERT_GE(shown, 0);
+  EXPECT_EQ(r.scene.images.at(shown).width, 1);  // the 1x1 red PNG, decoded
+}
+
+// Rules the validator checks and tinygltf does not (scene_io/gltf_rules.*), broken in objects
+// the scene does not use, and in the file as a whole. tools/gltf-validate.js: 32 errors, one per
+// warning below (NON_REQUIRED_EXTENSION, ASSET_MIN_VERSION_GREATER_THAN_VERSION, EMPTY_ENTITY
+// twice, ACCESSOR_NORMALIZED_INVALID, ANIMATION_DUPLICATE_TARGETS, MESH_PRIMITIVE_ACCESSOR_UNALIGNED,
+// BUFFER_VIEW_TARGET_OVERRIDE, ANIMATION_SAMPLER_INPUT_ACCESSOR_TOO_FEW_ELEMENTS, ...,
+// IMAGE_NON_ENABLED_MIME_TYPE).
+// Used, each refuses the file (tests/data/malformed/: position_without_bounds.gltf,
+// joints_without_weights.gltf, morph_target_without_base_attribute.gltf, node_matrix_not_trs.gltf,
+// emissive_strength_negative.gltf, extension_not_declared.gltf,
+// vertex_accessors_share_view_without_stride.gltf; skin_joint_not_in_scene.gltf).
+TEST(GltfConformance, UnusedObjectsBreakingTheValidatorsRulesAreWarnings) {
+  const GltfLoadResult r = load("unused_objects_breaking_validator_rules.gltf");
+  EXPECT_EQ(triangles(r.scene), 1u);
+  const std::string ignored = "ignored, as the scene does not use it: ", empty = " (glTF requires at least one element "
+                                                                                 "where an array is given)";
+  EXPECT_EQ(r.warnings,
+            (std::vector<std::string>{
+                ignored + "material 0 occlusionTexture refers to texture 5, but the file has 1 texture",
+                ignored + "material 1: KHR_materials_emissive_strength.emissiveStrength must not be negative",
+                ignored + "material 2: KHR_materials_specular.specularFactor must be between 0 and 1",
+                "its \"samplers\" array is empty" + empty,
+                "node 4 has an empty \"children\" array" + empty,
+                "its asset minVersion 2.1 is greater than its version 2.0",
+                "its extensionsUsed lists KHR_mesh_quantization, which glTF requires in extensionsRequired too",
+                ignored + "accessor 1 is normalized, but its componentType 5126 is not a byte or short type; only "
+                          "those can be",
+                ignored + "animation 0 channels 0 and 1 both animate node 5's translation",
+                ignored + "animation 1 channel 0 animates the weights of node 5, which has no mesh with morph targets",
+                ignored + "animation 2 sampler 0 input accessor 14 has no min and max (glTF requires both)",
+                ignored + "animation 3 sampler 0 is CUBICSPLINE with 1 keyframe; glTF requires at least 2",
+                ignored + "bufferView 1 has a byteStride but holds indices (target 34963); only vertex data has one",
+                ignored + "camera 0 has both a \"perspective\" and an \"orthographic\" object; glTF allows only the "
+                          "one its type names",
+                ignored + "image 0 (bufferView 15) is a WebP image, but extensionsUsed does not declare "
+                          "EXT_texture_webp (glTF requires it for a WebP image)",
+                ignored + "material 3 has extension KHR_materials_emissive_strength in its pbrMetallicRoughness, "
+                          "where glTF does not define it",
+                ignored + "mesh 1 primitive 0 POSITION accessor 2 has no min and max (glTF requires both)",
+                ignored + "mesh 10 primitive 0 morph target 0 POSITION accessor 9 has 2 elements, but the "
+                          "primitive's POSITION has 3",
+                ignored + "mesh 11 uses bufferView 9 for both vertex attributes and indices (primitive 0); glTF "
+                          "requires separate views",
+                ignored + "mesh 2 primitive 0 has 1 JOINTS_n and 0 WEIGHTS_n attributes; glTF requires as many of "
+                          "each",
+                ignored + "mesh 3 primitive 0 morph target 0 has NORMAL, which the primitive's attributes lack",
+                ignored + "mesh 4 primitives 0 and 1 have 1 and 0 morph targets; glTF requires the same number",
+                ignored + "mesh 5 has 2 weights but 1 morph target",
+                ignored + "mesh 6 primitive 0 _ID accessor 4 has componentType UNSIGNED_INT (5125), which glTF "
+                          "allows only for indices",
+                ignored + "mesh 7 primitive 0 COLOR_0 accessor 5 has byteOffset 2 in its bufferView, not a multiple "
+                          "of 4 (glTF requires one for vertex data)",
+                ignored + "mesh 8 reads accessors 6 and 7 from bufferView 6, which has no byteStride (glTF requires "
+                          "one when vertex accessors share a view)",
+                ignored + "mesh 9 primitive 0 indices accessor 8 is in bufferView 7, which has a byteStride (glTF "
+                          "forbids one for indices)",
+                ignored + "node 1 has a matrix whose last row is not 0, 0, 0, 1, so not a translation, rotation and "
+                          "scale (glTF requires one)",
+                ignored + "node 2 has a skin but no mesh",
+                ignored + "node 3 has morph weights but no mesh",
+                ignored + "skin 0's joints 4 and 5 have no common root (glTF requires one)",
+                ignored + "texture 0 has extension EXT_example_undeclared, which extensionsUsed does not declare "
+                          "(glTF requires it there)"}));
+}
+
+// Keyframe times whose accessor has no bufferView are zeros, which the validator accepts (0
+// errors) although they do not increase; the node they move shows a mesh, so the animation is
+// used. It loads, its two keys at 0.
+TEST(GltfConformance, KeyframeTimesWithoutABufferViewLoad) {
+  const GltfLoadResult r = load("keyframe_times_without_bufferview.gltf");
+  EXPECT_EQ(triangles(r.scene), 1u);
+  EXPECT_EQ(r.warnings, std::vector<std::string>{});
+  EXPECT_EQ(r.animations.at(0).channels.at(0).times, (std::vector<float>{0, 0}));
+}
+
 TEST(GltfConformance, InfoListsTheWarnings) {
   const std::string path = test::data_path("conformance/unused_invalid_objects.gltf");
   const test::CommandResult r = test::run_command(test::tessera_exe() + " info '" + path + "'");

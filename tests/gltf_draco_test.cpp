@@ -116,10 +116,14 @@ std::string grid_gltf(const Encoded& e) {
                       {"COLOR_0", 5121, "VEC4", true},    {"JOINTS_0", 5121, "VEC4", false},
                       {"WEIGHTS_0", 5121, "VEC4", true}};
   std::string accessors = fmt::format(R"({{"componentType":5125,"count":{},"type":"SCALAR"}})", grid_faces().size() * 3);
+  std::array<float, 3> lo = vertex(0).position, hi = lo;  // POSITION's bounds, which glTF requires
+  for (int v = 0; v < kSide * kSide; ++v)
+    for (int c = 0; c < 3; ++c) lo[c] = std::min(lo[c], vertex(v).position[c]), hi[c] = std::max(hi[c], vertex(v).position[c]);
+  const std::string bounds = fmt::format(R"(,"min":[{},{},{}],"max":[{},{},{}])", lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
   std::string attributes, mapped;
   for (int i = 0; i < 7; ++i) {
-    accessors += fmt::format(R"(,{{"componentType":{},"count":{},"type":"{}"{}}})", accs[i].component_type, e.points,
-                             accs[i].type, accs[i].normalized ? R"(,"normalized":true)" : "");
+    accessors += fmt::format(R"(,{{"componentType":{},"count":{},"type":"{}"{}{}}})", accs[i].component_type, e.points,
+                             accs[i].type, accs[i].normalized ? R"(,"normalized":true)" : "", i == 0 ? bounds : "");
     attributes += fmt::format(R"({}"{}":{})", i ? "," : "", accs[i].name, i + 1);
     mapped += fmt::format(R"({}"{}":{})", i ? "," : "", accs[i].name, e.ids.at(accs[i].name));
   }

@@ -412,7 +412,8 @@ std::vector<std::uint8_t> triangle_gltf(const std::vector<float>& xyz) {
   std::memcpy(bin.data(), xyz.data(), bin.size());
   const std::string json = R"({"asset":{"version":"2.0"},"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
                            R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)"
-                           R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"}],)"
+                           R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3",)"
+                           R"("min":[0,0,0],"max":[1,1,0]}],)"  // the finite triangle's bounds (glTF requires them)
                            R"("bufferViews":[{"buffer":0,"byteLength":36}],)"
                            R"("buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,)" +
                            test::base64(bin) + "\"}]}";

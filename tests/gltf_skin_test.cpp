@@ -86,11 +86,12 @@ std::vector<std::uint8_t> two_set_gltf(float weight0, const std::string& extra_s
   put(weights0, 48);
   put(weights1, 48);
   const std::string json =
-      R"({"asset":{"version":"2.0"},"scenes":[{"nodes":[0,1,2]}],)"
-      R"("nodes":[{"mesh":0,"skin":0,"translation":[9,9,9]},{"translation":[2,0,0]},{"translation":[0,3,0]}],)"
+      R"({"asset":{"version":"2.0"},"scenes":[{"nodes":[0,1]}],)"
+      R"("nodes":[{"mesh":0,"skin":0,"translation":[9,9,9]},{"translation":[2,0,0],"children":[2]},)"
+      R"({"translation":[-2,3,0]}],)"  // node 2 at (0, 3, 0): the joints' common root is node 1
       R"("skins":[{"joints":[1,2])" + extra_skin + R"(}],)"
       R"("meshes":[{"primitives":[{"attributes":{"POSITION":0,"JOINTS_0":1,"JOINTS_1":2,"WEIGHTS_0":3,"WEIGHTS_1":4}}]}],)"
-      R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"},)"
+      R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]},)"
       R"({"bufferView":1,"componentType":5121,"count":3,"type":"VEC4"},)"
       R"({"bufferView":2,"componentType":5121,"count":3,"type":"VEC4"},)"
       R"({"bufferView":3,"componentType":5126,"count":3,"type":"VEC4"},)"
