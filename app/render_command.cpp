@@ -258,8 +258,9 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
       ->capture_default_str()
       ->group("Threads and profiling");
   cmd->add_option("--rank-timeout", o.rank_timeout,
-                  "Under mpirun: end the job (exit 1, naming the rank) when a rank has given no sign of life for "
-                  "this many seconds while another waits for it (a stopped or hung node); it must exceed the longest "
+                  "Under mpirun: end the job (exit 1, naming the rank) when a rank has given no sign of life, or rank 0 "
+                  "has not answered a request, for this many seconds while another waits for it (a stopped or hung "
+                  "node); it must exceed the longest "
                   "a rank works without contacting rank 0: a batch of tiles, a static block, a wave of a whole "
                   "frame (0: wait forever)")
       ->check(CLI::Range(0.0, 1e9))

@@ -51,7 +51,8 @@ std::string rank_list(const std::vector<int>& ranks) {
 
 class MpiRankGroup : public RankGroup {
  public:
-  MpiRankGroup(int rank, int size, double timeout) : rank_(rank), size_(size), timeout_(timeout) {
+  MpiRankGroup(int rank, int size, double timeout)
+      : rank_(rank), size_(size), timeout_(timeout), notes_(2 * static_cast<std::size_t>(size)) {
     const MPI_Aint slots = rank == 0 ? arrived_slot(size) : 0;
     // Open MPI's one-sided components differ by network; say which to use rather than die.
     MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
@@ -79,21 +80,20 @@ class MpiRankGroup : public RankGroup {
     count_ = count;
     barrier_untimed();  // everyone is done with the last wave's counter
     if (rank_ == 0) {
-      const long long zero = 0;
-      MPI_Put(&zero, 1, MPI_LONG_LONG, 0, kCounter, 1, MPI_LONG_LONG, window_);
-      MPI_Win_flush(0, window_);
+      static const long long zero = 0;
+      post_at_rank0(&zero, discarded_, 1, kCounter, MPI_REPLACE);
+      complete();
     }
     barrier_untimed();
   }
 
   std::pair<std::size_t, std::size_t> next_items(std::size_t batch) override {
     Timed timed(communication_);
-    const long long add = static_cast<long long>(batch);
-    long long first = 0;
-    MPI_Fetch_and_op(&add, &first, MPI_LONG_LONG, 0, kCounter, MPI_SUM, window_);
-    note_beat();  // flushed with the counter's operation
-    MPI_Win_flush(0, window_);
-    const std::size_t begin = std::min(static_cast<std::size_t>(first), count_);
+    batch_ = static_cast<long long>(batch);
+    post_at_rank0(&batch_, &first_, 1, kCounter, MPI_SUM);
+    note_beat();  // completed with the counter's operation
+    complete();
+    const std::size_t begin = std::min(static_cast<std::size_t>(first_), count_);
     return {begin, std::min(begin + batch, count_)};
   }
 
@@ -128,7 +128,7 @@ class MpiRankGroup : public RankGroup {
   void alive() override {
     Timed timed(communication_);
     note_beat();
-    MPI_Win_flush(0, window_);
+    complete();
   }
 
   void progress() override {
@@ -180,33 +180,43 @@ class MpiRankGroup : public RankGroup {
     return total;
   }
 
-  // Notes for the watchdog: counters at rank 0 advanced with the same remote atomic as the
-  // work counter (MPI_Fetch_and_op, MPI_SUM), which needs nothing of rank 0 while it renders;
-  // other one-sided operations may wait for rank 0 to enter MPI, serialising the ranks.
-  // The operation completes only at the caller's next flush: its buffers must outlive this
-  // call (on the stack they did not, which AddressSanitizer caught over TCP), so the one is
-  // static and the discarded results go to members, two in flight at most (enter()).
-  void add_at_rank0(MPI_Aint slot) {
-    static const long long one = 1;
-    long long* discarded = &discarded_[next_discarded_++ % 2];
-    MPI_Fetch_and_op(&one, discarded, MPI_LONG_LONG, 0, slot, MPI_SUM, window_);
+  // Every one-sided operation is a read-modify-write at rank 0 (MPI_Rget_accumulate; the
+  // notes advance with MPI_SUM, as the work counter does, which needs nothing of rank 0 while
+  // it renders with shared memory or RDMA; other operations may wait for rank 0 to enter MPI,
+  // serialising the ranks). Request-based, so that complete() can give up on a stopped rank 0
+  // where rank 0 must serve them (TCP). The buffers must outlive the request (on the stack
+  // they did not, which AddressSanitizer caught over TCP), even when complete() throws: the
+  // operands are static or members.
+  void post_at_rank0(const long long* operand, long long* result, int count, MPI_Aint slot, MPI_Op op) {
+    MPI_Rget_accumulate(operand, operand ? count : 0, MPI_LONG_LONG, result, count, MPI_LONG_LONG, 0, slot, count,
+                        MPI_LONG_LONG, op, window_, &pending_[pending_count_++]);
   }
-  void note_beat() { add_at_rank0(beats_slot(rank_)); }
-  // Before each collective call: every rank makes the same calls, so their counts agree.
+  static constexpr long long kOnes[2] = {1, 1};
+  void note_beat() { post_at_rank0(kOnes, discarded_, 1, beats_slot(rank_), MPI_SUM); }
+  // Before each collective call: every rank makes the same calls, so their counts agree. The
+  // call and a sign of life, [arrived, beats], in one operation.
   void enter() {
     ++calls_;
-    note_beat();
-    add_at_rank0(arrived_slot(rank_));
-    MPI_Win_flush(0, window_);
+    post_at_rank0(kOnes, discarded_, 2, arrived_slot(rank_), MPI_SUM);
+    complete();
   }
 
-  // The notes of ranks [first, first + count): [arrived, beats] each.
-  std::vector<long long> read_notes(int first, int count) {
-    std::vector<long long> notes(2 * static_cast<std::size_t>(count));
-    MPI_Get_accumulate(nullptr, 0, MPI_LONG_LONG, notes.data(), static_cast<int>(notes.size()), MPI_LONG_LONG, 0,
-                       arrived_slot(first), static_cast<int>(notes.size()), MPI_LONG_LONG, MPI_NO_OP, window_);
-    MPI_Win_flush(0, window_);
-    return notes;
+  // Tests the posted operations in a loop, as wait() does a collective call: where rank 0
+  // must serve them and is stopped, a blocking MPI_Win_flush would wait forever.
+  void complete() {
+    const Clock::time_point start = Clock::now();
+    for (int done = 0;;) {
+      MPI_Testall(pending_count_, pending_, &done, MPI_STATUSES_IGNORE);
+      if (done) break;
+      if (timeout_ > 0.0 && seconds_since(start) > timeout_) throw RankTimeout(not_answered({0}));
+      nap_after(start);
+    }
+    pending_count_ = 0;
+  }
+
+  // The notes of ranks [0, count): [arrived, beats] each, in notes_.
+  void post_read_notes(int count) {
+    post_at_rank0(nullptr, notes_.data(), 2 * count, arrived_slot(0), MPI_NO_OP);
   }
 
   // MPI_Wait with a watchdog. A waiting rank gives signs of life itself, and looks at the
@@ -225,27 +235,32 @@ class MpiRankGroup : public RankGroup {
     for (;;) {
       MPI_Test(&request, &done, MPI_STATUS_IGNORE);
       if (done) return;
-      if (seconds_since(start) > kSpinSeconds) std::this_thread::sleep_for(kNap);
+      nap_after(start);
       if (timeout_ <= 0.0 || seconds_since(looked) < kWatchEvery) continue;
       looked = Clock::now();
       note_beat();
-      const std::vector<long long> notes = read_notes(0, watched);
+      post_read_notes(watched);
+      complete();
+      const std::vector<long long>& notes = notes_;
       std::vector<int> late;
       for (int r = 0; r < watched; ++r) {
         if (r == rank_) continue;
         if (notes[2 * r + 1] != beats[r]) beats[r] = notes[2 * r + 1], seen[r] = looked;
         if ((rank_ != 0 || notes[2 * r] < calls_) && seconds_since(seen[r]) > timeout_) late.push_back(r);
       }
-      if (!late.empty())
-        throw RankTimeout(rank_list(late) + fmt_seconds(late.size() == 1 ? " has not answered for " : " have not answered for ", timeout_) +
-                          " (stopped, hung or cut off): ending the job");
+      if (!late.empty()) throw RankTimeout(not_answered(late));
     }
   }
 
-  static std::string fmt_seconds(const std::string& before, double seconds) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%g s", seconds);
-    return before + text;
+  static void nap_after(Clock::time_point start) {
+    if (seconds_since(start) > kSpinSeconds) std::this_thread::sleep_for(kNap);
+  }
+
+  std::string not_answered(const std::vector<int>& late) const {
+    char seconds[32];
+    std::snprintf(seconds, sizeof seconds, "%g s", timeout_);
+    return rank_list(late) + (late.size() == 1 ? " has not answered for " : " have not answered for ") + seconds +
+           " (stopped, hung or cut off): ending the job";
   }
 
   int rank_, size_;
@@ -255,8 +270,12 @@ class MpiRankGroup : public RankGroup {
   long long calls_ = 0;
   double communication_ = 0.0;
   MPI_Win window_;
-  long long discarded_[2] = {0, 0};  // add_at_rank0's results, never read
-  unsigned next_discarded_ = 0;
+  // The one-sided operations' buffers and requests (post_at_rank0), at most two in flight.
+  long long batch_ = 0, first_ = 0;  // the counter's operand and result
+  long long discarded_[2] = {0, 0};  // the notes' results, never read
+  std::vector<long long> notes_;
+  MPI_Request pending_[2];
+  int pending_count_ = 0;
 };
 
 }  // namespace

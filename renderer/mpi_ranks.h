@@ -1,7 +1,8 @@
 // MPI for a distributed render (Open MPI from Debian): the session a process opens when a
 // launcher (mpirun, srun) started it, and the RankGroup render_frame uses. The shared work
-// counter is an integer in a one-sided window on rank 0, advanced with MPI_Fetch_and_op, the
-// paper's "next work item" variable; MPI is called from the main thread only (FUNNELED).
+// counter is an integer in a one-sided window on rank 0, advanced with a remote fetch-and-add
+// (MPI_Rget_accumulate), the paper's "next work item" variable; MPI is called from the main
+// thread only (FUNNELED).
 #pragma once
 
 #include <memory>
@@ -32,7 +33,8 @@ class MpiSession {
   // Its watchdog: rank 0, waiting in a collective call, throws RankTimeout naming the ranks
   // that have not reached the call and have given no sign of life (a call, a batch taken, a
   // wave of a frame rendered alone, waiting) for `timeout` seconds; another rank, waiting,
-  // throws when rank 0 has given none for that long. 0: no watchdog.
+  // throws when rank 0 has given none for that long, or has not completed a one-sided
+  // operation (the counter, the notes) for that long. 0: no watchdog.
   std::unique_ptr<RankGroup> ranks(double timeout) const;
   // Ends every rank's process (MPI_Abort), e.g. when this rank failed and the others wait.
   [[noreturn]] static void abort_all(int exit_code);

@@ -183,6 +183,23 @@ TEST_F(MpiFaults, AStoppedRankEndsTheJobWithinTheTimeout) {
   test::expect_resumes_to_whole(out, opts);
 }
 
+// Rank 0 stopped where the ranks' one-sided operations need it to answer: Open MPI's osc/pt2pt
+// over TCP makes each remote atomic a message that rank 0 serves (on one machine the default,
+// osc/sm, does them in shared memory without it). Rank 1, waiting for the counter or for rank
+// 0's notes, gives up within the timeout, naming rank 0; with a blocking MPI_Win_flush it
+// waited forever (here: until the test's 40 s, exit 124).
+TEST_F(MpiFaults, AStoppedRankZeroEndsTheJobOverTcp) {
+  const std::string dir = test::make_temp_dir("mpi-hung0");
+  const std::string out = dir + "/h.exr", opts = "-q --spp 1024 --checkpoint 0.001 --rank-timeout 2";
+  const std::string tcp = "--mca btl tcp,self --mca osc pt2pt ";
+  const test::SignalledJob job =
+      test::run_signalled(out, "STOP", "OMPI_COMM_WORLD_RANK=0", mpirun(2, 40) + tcp + render_args(out, opts));
+  EXPECT_EQ(job.rc, 1) << job.log;
+  EXPECT_LT(job.ms, 30000) << "the timeout is 2 s";
+  EXPECT_GE(job.ms, 2000) << "gave up before the timeout";
+  EXPECT_NE(job.log.find("tessera: rank 1: error: rank 0 has not answered for 2 s"), std::string::npos) << job.log;
+}
+
 // A sequence with whole frames to ranks: a rank that has finished its frames waits for the
 // others' (up to a whole frame) with the watchdog on; the others give a sign of life between
 // waves, so a frame longer than the timeout is no fault, and the job ends well. The timeout is

@@ -23,9 +23,10 @@ inline bool have_mpirun() { return std::system("command -v mpirun > /dev/null 2>
 
 // Open MPI refuses root without --allow-run-as-root (CI runs as root); --bind-to none lets
 // each rank's TBB threads use every core. Leak checking is off for the ranks: a sanitizer
-// build would report Open MPI's own allocations, which it keeps until exit.
-inline std::string mpirun(int ranks) {
-  return "env ASAN_OPTIONS=detect_leaks=0 timeout 300 mpirun --oversubscribe --bind-to none " +
+// build would report Open MPI's own allocations, which it keeps until exit. A job still
+// running after `seconds` is stopped (mpirun, told to stop, kills its ranks): exit code 124.
+inline std::string mpirun(int ranks, int seconds = 300) {
+  return "env ASAN_OPTIONS=detect_leaks=0 timeout " + std::to_string(seconds) + " mpirun --oversubscribe --bind-to none " +
          std::string(geteuid() == 0 ? "--allow-run-as-root " : "") + "-np " + std::to_string(ranks) + " ";
 }
 
