@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -28,14 +29,9 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
-// `described`: what the summary line says of it ("white (auto: no lights)").
-vec3 parse_background(const std::string& text, const SceneDescription& scene, std::string& described) {
-  if (text == "auto") {
-    const AutoBackground choice = choose_auto_background(scene);
-    described = fmt::format("{} (auto: {})", choice.black ? "black" : "white", choice.why);
-    return vec3(choice.black ? 0.0f : 1.0f);
-  }
-  described = text;
+// A colour given as R,G,B or one number; "auto" is none (nullopt). Throws UsageError.
+std::optional<vec3> background_color(const std::string& text) {
+  if (text == "auto") return std::nullopt;
   vec3 c;
   char tail;
   const int n = std::sscanf(text.c_str(), "%f,%f,%f%c", &c.r, &c.g, &c.b, &tail);
@@ -46,14 +42,34 @@ vec3 parse_background(const std::string& text, const SceneDescription& scene, st
   return c;
 }
 
+// `described`: what the summary line says of it ("white (auto: no lights)").
+vec3 parse_background(const std::string& text, const SceneDescription& scene, std::string& described) {
+  if (const std::optional<vec3> c = background_color(text)) {
+    described = text;
+    return *c;
+  }
+  const AutoBackground choice = choose_auto_background(scene);
+  described = fmt::format("{} (auto: {})", choice.black ? "black" : "white", choice.why);
+  return vec3(choice.black ? 0.0f : 1.0f);
+}
+
+struct CropFractions {
+  double x0, x1, y0, y1;
+};
+
+CropFractions crop_fractions(const std::string& text) {
+  CropFractions f;
+  char tail;
+  if (std::sscanf(text.c_str(), "%lf,%lf,%lf,%lf%c", &f.x0, &f.x1, &f.y0, &f.y1, &tail) != 4 ||
+      !(0.0 <= f.x0 && f.x0 < f.x1 && f.x1 <= 1.0) || !(0.0 <= f.y0 && f.y0 < f.y1 && f.y1 <= 1.0))
+    throw UsageError("--crop " + text + ": expected X0,X1,Y0,Y1 with 0 <= X0 < X1 <= 1 and 0 <= Y0 < Y1 <= 1");
+  return f;
+}
+
 // pbrt's rule: the crop [x0, x1) x [y0, y1) in fractions covers the pixels from ceil(x0 W)
 // up to ceil(x1 W), so adjacent crops tile the frame without overlap.
 Tile crop_region(const std::string& text, int width, int height) {
-  double x0, x1, y0, y1;
-  char tail;
-  if (std::sscanf(text.c_str(), "%lf,%lf,%lf,%lf%c", &x0, &x1, &y0, &y1, &tail) != 4 || !(0.0 <= x0 && x0 < x1 && x1 <= 1.0) ||
-      !(0.0 <= y0 && y0 < y1 && y1 <= 1.0))
-    throw UsageError("--crop " + text + ": expected X0,X1,Y0,Y1 with 0 <= X0 < X1 <= 1 and 0 <= Y0 < Y1 <= 1");
+  const auto [x0, x1, y0, y1] = crop_fractions(text);
   auto at = [](double f, int size) { return static_cast<int>(std::ceil(f * size)); };
   const Tile region{at(x0, width), at(y0, height), at(x1, width), at(y1, height)};
   if (region.x1 <= region.x0 || region.y1 <= region.y0)
@@ -132,6 +148,11 @@ bool same_environment(const EnvironmentParams& a, const EnvironmentParams& b) {
 }
 
 }  // namespace
+
+void check_value_syntax(const RenderOptions& o) {
+  background_color(o.background);
+  if (!o.crop.empty()) crop_fractions(o.crop);
+}
 
 std::string frame_output_path(const RenderOptions& o) {
   if (!o.output.empty()) return o.output;

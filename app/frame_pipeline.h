@@ -19,6 +19,10 @@ namespace tessera {
 // The scene time the options ask for: --frame / --fps, else --time.
 float scene_time(const RenderOptions& o);
 
+// The syntax of the values the plan reads later (--background, --crop), checked before the
+// scene is loaded so a typo costs nothing. Throws UsageError.
+void check_value_syntax(const RenderOptions& o);
+
 // Where -o goes: the option, else the resumed file (NAME.exr for NAME.partial.exr), else
 // SCENE_NAME.exr in the current directory.
 std::string frame_output_path(const RenderOptions& o);

@@ -337,6 +337,7 @@ int run_render(const RenderOptions& options, RankGroup* ranks) {
     throw UsageError("--resume: continues one frame; a sequence continues its interrupted frame with --skip-existing");
   apply_quick_preset(o);
   check_option_conflicts(o);
+  check_value_syntax(o);
   if (leader)
     for (const std::string& w : ignored_option_warnings(o, ranks && ranks->size() > 1))
       fmt::print(stderr, "tessera: warning: {}\n", w);

@@ -134,6 +134,21 @@ TEST(CliOptions, MalformedBackgroundExits2) {
   EXPECT_FALSE(fs::exists(out));
 }
 
+// Values the frame's plan reads (--background, --crop) are checked before the scene is read:
+// a typo on a large file costs nothing, and is what the user hears of, even when the scene
+// path is wrong too.
+TEST(CliOptions, MalformedValuesAreRefusedBeforeTheSceneIsRead) {
+  const std::string missing = test::make_temp_dir("cli-early-values") + "/no-such-scene.glb";
+  for (const char* args : {"--background white", "--crop 0.5,0.2,0,1"}) {
+    const auto r = tessera("render " + quote(missing) + " -q " + args);
+    EXPECT_EQ(r.exit_code, 2) << args;
+    ASSERT_EQ(line_count(r.err), 1u) << r.err;
+    const std::string option = std::string(args).substr(0, std::string(args).find(' '));
+    EXPECT_EQ(r.err.rfind("tessera: error: " + std::string(args) + ": ", 0), 0u) << r.err;
+    EXPECT_EQ(r.err.find("no-such-scene"), std::string::npos) << option << ": " << r.err;
+  }
+}
+
 TEST(CliOptions, UnknownOptionExits2) {
   const auto r = tessera("render " + quote(box()) + " --bogus-option");
   EXPECT_EQ(r.exit_code, 2);
