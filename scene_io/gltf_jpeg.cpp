@@ -1,6 +1,7 @@
 #include "scene_io/gltf_jpeg.h"
 
 #include <cstdint>
+#include <cstring>
 #include <memory>
 
 #include <fmt/format.h>
@@ -13,6 +14,14 @@ namespace {
 constexpr std::uint64_t kMostPixels = std::uint64_t{1} << 28;
 
 std::string corrupt(tjhandle tj) { return fmt::format("its JPEG data is corrupt ({})", tjGetErrorStr2(tj)); }
+
+// Stray bytes between two segments (some cameras' and editors' JPEGs: libjpeg's "Corrupt JPEG
+// data: N extraneous bytes before marker 0xXX") are skipped, every pixel decoded: stb_image,
+// browsers and OpenImageIO show such images, and so does tessera.
+bool only_stray_bytes(tjhandle tj) {
+  return tjGetErrorCode(tj) == TJERR_WARNING &&
+         std::strstr(tjGetErrorStr2(tj), "extraneous bytes before marker") != nullptr;
+}
 
 // c * k / 255 rounded, as stb_image converted CMYK: Adobe's inverted CMYK (and YCCK, which
 // libjpeg turns into the same) gives each of R, G, B as its inverted ink times the black.
@@ -38,15 +47,18 @@ std::string decode_jpeg(tinygltf::Image* image, const unsigned char* bytes, int 
   if (!tj) return fmt::format("libjpeg-turbo could not start ({})", tjGetErrorStr2(nullptr));
   const unsigned long length = static_cast<unsigned long>(size);
   int w = 0, h = 0, subsampling = 0, colorspace = 0;
-  if (tjDecompressHeader3(tj.get(), bytes, length, &w, &h, &subsampling, &colorspace) != 0) return corrupt(tj.get());
+  if (tjDecompressHeader3(tj.get(), bytes, length, &w, &h, &subsampling, &colorspace) != 0 && !only_stray_bytes(tj.get()))
+    return corrupt(tj.get());
   if (static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(h) > kMostPixels)
     return fmt::format("its JPEG header gives {}x{} pixels, more than the {} tessera decodes", w, h, kMostPixels);
   const bool cmyk = colorspace == TJCS_CMYK || colorspace == TJCS_YCCK;
   image->image.resize(static_cast<std::size_t>(w) * h * 4);
-  // Any warning (data patched over) is an error too; LIMITSCANS refuses a progressive JPEG
-  // of over 500 scans, libjpeg-turbo's guard against such files' unbounded decoding time.
+  // A warning that data was patched over (a truncated file, a broken segment) is an error;
+  // LIMITSCANS refuses a progressive JPEG of over 500 scans, libjpeg-turbo's guard against
+  // such files' unbounded decoding time.
   if (tjDecompress2(tj.get(), bytes, length, image->image.data(), w, 0, h, cmyk ? TJPF_CMYK : TJPF_RGBA,
-                    TJFLAG_LIMITSCANS) != 0) {
+                    TJFLAG_LIMITSCANS) != 0 &&
+      !only_stray_bytes(tj.get())) {
     std::vector<unsigned char>().swap(image->image);
     return corrupt(tj.get());
   }

@@ -191,6 +191,21 @@ TEST(GltfJpeg, GltfImageIsTheDecodedJpeg) {
   EXPECT_TRUE(*image.pixels == with_libjpeg_turbo(jpeg).image);
 }
 
+// Junk between two segments (here two bytes before the start-of-scan marker, outside any
+// entropy-coded data) is skipped with a warning by libjpeg; every pixel is still there, the
+// same as without it.
+TEST(GltfJpeg, StrayBytesBetweenSegmentsDecodeToTheSamePixels) {
+  const std::vector<std::uint8_t> clean = encode(test_pattern(32, 24, 3), 32, 24, TJPF_RGB, TJSAMP_420, 90);
+  std::size_t sos = 2;
+  while (sos + 1 < clean.size() && !(clean[sos] == 0xFF && clean[sos + 1] == 0xDA)) ++sos;
+  ASSERT_LT(sos + 1, clean.size()) << "no start-of-scan marker";
+  std::vector<std::uint8_t> stray = clean;
+  stray.insert(stray.begin() + static_cast<std::ptrdiff_t>(sos), {0x12, 0x34});
+  tinygltf::Image image;
+  ASSERT_EQ(decode_jpeg(&image, stray.data(), static_cast<int>(stray.size())), "");
+  EXPECT_TRUE(image.image == with_libjpeg_turbo(clean).image);
+}
+
 TEST(GltfJpeg, TruncatedJpegIsRefusedNamingTheImage) {
   std::vector<std::uint8_t> jpeg = encode(test_pattern(64, 64, 3), 64, 64, TJPF_RGB, TJSAMP_420, 90);
   jpeg.resize(jpeg.size() / 2);
