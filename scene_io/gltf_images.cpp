@@ -51,7 +51,7 @@ const ImageFormat* recognised_format(const unsigned char* b, int size) {
       ktx2{"image/ktx2", "KTX2"};
   static const unsigned char png_signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
   if (size >= 8 && std::memcmp(b, png_signature, 8) == 0) return &png;
-  if (size >= 3 && b[0] == 0xFF && b[1] == 0xD8 && b[2] == 0xFF) return &jpeg;
+  if (is_jpeg(b, size)) return &jpeg;
   if (is_webp(b, size)) return &webp;
   if (is_ktx2(b, size)) return &ktx2;
   return nullptr;
