@@ -63,7 +63,7 @@ void Environment::build_distribution() {
     for (int x = 0; x < width_; ++x) {
       float peak = 0.0f;
       for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) peak = std::fmax(peak, lum(x + dx, y + dy));
+        for (int dx = -1; dx <= 1; ++dx) peak = fmax_inline(peak, lum(x + dx, y + dy));
       w[x] = (peak + 1e-4) * sin_theta;
     }
     columns_.emplace_back(std::move(w));

@@ -16,8 +16,14 @@ using glm::vec4;
 constexpr float kPi = 3.14159265358979323846f;
 constexpr float kInvPi = 0.31830988618379067154f;
 
+// std::fmax and std::fmin, inline: the same result for every input (a NaN argument yields the
+// other one; of two equal values, the second, as glibc's maxss/minss), but GCC calls libm for
+// std::fmax and std::fmin unless -ffinite-math-only, and the shading code takes them per hit.
+inline float fmax_inline(float a, float b) { return a > b || b != b ? a : b; }
+inline float fmin_inline(float a, float b) { return a < b || b != b ? a : b; }
+
 inline float luminance(const vec3& c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
-inline float max_component(const vec3& c) { return std::fmax(c.r, std::fmax(c.g, c.b)); }
+inline float max_component(const vec3& c) { return fmax_inline(c.r, fmax_inline(c.g, c.b)); }
 inline bool is_finite(const vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }

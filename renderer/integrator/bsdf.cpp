@@ -21,10 +21,10 @@ GltfBsdf::GltfBsdf(const ShadingPoint& sp, const vec3& wo, float eta, const Fram
       clearcoat_(sp.clearcoat),
       roughness_(glm::clamp(sp.roughness, 0.0f, 1.0f)),
       coat_roughness_(glm::clamp(sp.clearcoat_roughness, 0.0f, 1.0f)),
-      ggx_{std::fmax(kMinAlpha, sp.roughness * sp.roughness)},
-      coat_ggx_{std::fmax(kMinAlpha, sp.clearcoat_roughness * sp.clearcoat_roughness)},
+      ggx_{fmax_inline(kMinAlpha, sp.roughness * sp.roughness)},
+      coat_ggx_{fmax_inline(kMinAlpha, sp.clearcoat_roughness * sp.clearcoat_roughness)},
       sheen_color_(sp.sheen_color),
-      sheen_{std::fmax(kMinSheenAlpha, sp.sheen_roughness * sp.sheen_roughness)},
+      sheen_{fmax_inline(kMinSheenAlpha, sp.sheen_roughness * sp.sheen_roughness)},
       sheen_max_(max_component(sp.sheen_color)) {
   // A volume of index 1 is invisible: its microfacets bend nothing, whatever their roughness
   // (treating it as thin-walled, as refracts_ does, must not blur it either).
@@ -48,15 +48,16 @@ GltfBsdf::GltfBsdf(const ShadingPoint& sp, const vec3& wo, float eta, const Fram
   // macro normal. Every lobe that can be non-zero keeps a non-zero probability.
   const vec3 fo = reflectance_o_;
   const float dielectric = 1.0f - metallic_;
-  const float tint = std::fmax(luminance(base_), 1e-3f);
+  const float tint = fmax_inline(luminance(base_), 1e-3f);
   float w[kLobeCount];
   const float diffuse = dielectric * (1.0f - transmission_) * (1.0f - mean3(fo));
   w[kDiffuse] = diffuse * (1.0f - diffuse_transmission_) * luminance(base_);
   w[kDiffuseTransmission] = diffuse * diffuse_transmission_ * luminance(diffuse_transmission_color_);
   w[kSpecular] = metallic_ * max3(metal_fresnel(wo.z) * metal_scale_) * e_o_ + dielectric * mean3(fo);
   w[kMultiScatter] = metallic_ * (1.0f - e_o_) * max3(multiscatter_color_) * kPi * (1.0f - base_albedo_.albedo_average);
-  w[kTransmission] = dielectric * transmission_ * std::fmax(1.0f - mean3(fo), 0.05f) * tint;
-  const float under_sheen = sheen_scaling(wo);
+  w[kTransmission] = dielectric * transmission_ * fmax_inline(1.0f - mean3(fo), 0.05f) * tint;
+  sheen_scaling_o_ = sheen_scaling(wo);
+  const float under_sheen = sheen_scaling_o_;
   if (!refracts_ && transmission_ > 0.0f)
     straight_ = coat_scale_ * under_sheen * dielectric * transmission_ * (vec3(1.0f) - fo) * base_;
   for (int i = 0; i < kSheen; ++i) w[i] *= under_sheen;
@@ -66,6 +67,8 @@ GltfBsdf::GltfBsdf(const ShadingPoint& sp, const vec3& wo, float eta, const Fram
   float total = 0.0f;
   for (float x : w) total += x;
   for (int i = 0; i < kLobeCount; ++i) weight_[i] = total > 0.0f ? w[i] / total : 0.0f;
+  lambda_o_ = ggx_.lambda(wo);
+  g1_o_ = 1.0f / (1.0f + lambda_o_);
 }
 
 // KHR_materials_anisotropy (the specification's alpha_t = mix(alpha, 1, strength^2) along the
@@ -84,7 +87,7 @@ void GltfBsdf::orient_lobes(const ShadingPoint& sp, const Frame& frame, const ve
       const float r = roughness_;
       roughness_ = std::sqrt(std::sqrt(0.5f * (along * along + alpha * alpha)));
       const float projected = std::sqrt(wo.x * wo.x + wo.y * wo.y);
-      const float azimuth = projected > 1e-6f ? std::acos(std::fmin(1.0f, std::fabs(glm::dot(vec2(wo.x, wo.y), axis)) / projected)) : 0.0f;
+      const float azimuth = projected > 1e-6f ? std::acos(fmin_inline(1.0f, std::fabs(glm::dot(vec2(wo.x, wo.y), axis)) / projected)) : 0.0f;
       anisotropic_o_ = anisotropic_ggx_albedo(wo.z, azimuth, r, sp.anisotropy);
     }
   }
@@ -113,10 +116,10 @@ void GltfBsdf::compensate(const vec3& wo) {
   e_o_ = anisotropic ? anisotropic_o_.albedo : base_albedo_.albedo(mu);
   if (refracts_) {
     const InterfaceAlbedo a = dielectric_albedo(mu, roughness_, eta_);
-    interface_scale_ = 1.0f / std::fmax(a.reflect + a.transmit, 1e-3f);
+    interface_scale_ = 1.0f / fmax_inline(a.reflect + a.transmit, 1e-3f);
     reflectance_o_ = with_film(vec3(a.reflect * interface_scale_), mu);  // base_reflectance(mu), read once
   } else {
-    interface_scale_ = 1.0f / std::fmax(e_o_, 1e-3f);
+    interface_scale_ = 1.0f / fmax_inline(e_o_, 1e-3f);
     // Toward wo, an anisotropic lobe reflects its own share; the base's layering stays on
     // the isotropic tables (for wi and the average), so the base takes exactly the rest.
     reflectance_o_ = anisotropic ? with_film(vec3(specular_ * (f0_max_ + (1.0f - f0_max_) * anisotropic_o_.schlick_share)), mu)
@@ -135,7 +138,7 @@ void GltfBsdf::compensate(const vec3& wo) {
   // F = 1), as its lost light depends on wo's azimuth, which the isotropic lobe cannot follow.
   const float e_avg_metal = base_albedo_.albedo_average;
   if (metallic_ > 0.0f && anisotropic) {
-    metal_scale_ = vec3(1.0f) + metal_f0_ * ((1.0f - e_o_) / std::fmax(e_o_, 1e-3f));
+    metal_scale_ = vec3(1.0f) + metal_f0_ * ((1.0f - e_o_) / fmax_inline(e_o_, 1e-3f));
   } else if (metallic_ > 0.0f && e_avg_metal < 1.0f - 1e-4f) {
     const vec3 f_avg = metal_f0_ + (vec3(1.0f) - metal_f0_) / 21.0f;
     const vec3 f_ms = f_avg * f_avg * e_avg_metal / (vec3(1.0f) - f_avg * (1.0f - e_avg_metal));
@@ -144,7 +147,7 @@ void GltfBsdf::compensate(const vec3& wo) {
   if (clearcoat_ > 0.0f) {
     const float mu_coat = coat_tilted_ ? coat_frame_.to_local(wo).z : mu;
     coat_albedo_ = AlbedoSlice(coat_roughness_);
-    coat_interface_scale_ = 1.0f / std::fmax(coat_albedo_.albedo(mu_coat), 1e-3f);
+    coat_interface_scale_ = 1.0f / fmax_inline(coat_albedo_.albedo(mu_coat), 1e-3f);
     const float reflectance = 0.04f + 0.96f * coat_albedo_.schlick_share(mu_coat);
     coat_scale_ = 1.0f - clearcoat_ * reflectance;
   } else {
@@ -155,7 +158,7 @@ void GltfBsdf::compensate(const vec3& wo) {
 vec3 GltfBsdf::base_reflectance(float mu) const {
   if (refracts_) {
     const InterfaceAlbedo a = dielectric_albedo(mu, roughness_, eta_);
-    return with_film(vec3(a.reflect / std::fmax(a.reflect + a.transmit, 1e-3f)), mu);
+    return with_film(vec3(a.reflect / fmax_inline(a.reflect + a.transmit, 1e-3f)), mu);
   }
   return with_film(vec3(specular_ * (f0_max_ + (1.0f - f0_max_) * base_albedo_.schlick_share(mu))), mu);
 }
@@ -180,7 +183,7 @@ vec3 GltfBsdf::film_reflectance(float mu) const {
 // bare surface reflects there (f below Schlick's curve for f0 = 0, only toward grazing),
 // f0 = 0: the curve then passes above f, but stays a reflectance the tables hold.
 vec3 GltfBsdf::schlick_refit(const vec3& f, float mu) {
-  const float m = 1.0f - std::fmax(mu, 0.05f), p = m * m * m * m * m;
+  const float m = 1.0f - fmax_inline(mu, 0.05f), p = m * m * m * m * m;
   return glm::clamp((f - p) / (1.0f - p), 0.0f, 1.0f);
 }
 
@@ -203,10 +206,18 @@ float GltfBsdf::coat_fresnel(float cos_o) const {
   return fresnel_schlick(vec3(0.04f), vec3(1.0f), cos_o).x;  // coat ior 1.5
 }
 
-vec3 GltfBsdf::reflection(const vec3& wo, const vec3& wi) const {
-  const vec3 h = glm::normalize(wo + wi);
-  const float cos_oh = glm::dot(wo, h);
-  const float spec = ggx_.D(h) * ggx_.G2(wo, wi) / (4.0f * wo.z * wi.z);
+GltfBsdf::HalfVector GltfBsdf::half_vector(const vec3& wo, const vec3& wi) const {
+  if (wi.z <= 0.0f) return {};
+  HalfVector m;
+  m.h = glm::normalize(wo + wi);
+  m.cos_oh = glm::dot(wo, m.h);
+  m.d = ggx_.D(m.h);
+  return m;
+}
+
+vec3 GltfBsdf::reflection(const vec3& wo, const vec3& wi, const HalfVector& m) const {
+  const float cos_oh = m.cos_oh;
+  const float spec = m.d * GgxDistribution::G2(lambda_o_, ggx_.lambda(wi)) / (4.0f * wo.z * wi.z);
   vec3 f(0.0f);
   if (metallic_ < 1.0f) {
     const vec3 base_share = base_scale_o_ * (vec3(1.0f) - base_reflectance(wi.z));
@@ -240,11 +251,21 @@ vec3 GltfBsdf::diffuse_transmission(const vec3& wo, const vec3& wi) const {
          diffuse_transmission_color_ * kInvPi;
 }
 
-vec3 GltfBsdf::eval(const vec3& wo, const vec3& wi) const {
+vec3 GltfBsdf::eval(const vec3& wo, const vec3& wi) const { return eval(wo, wi, half_vector(wo, wi)); }
+
+vec3 GltfBsdf::eval(const vec3& wo, const vec3& wi, float& pdf) const {
+  const HalfVector m = half_vector(wo, wi);
+  pdf = this->pdf(wo, wi, m);
+  return eval(wo, wi, m);
+}
+
+vec3 GltfBsdf::eval(const vec3& wo, const vec3& wi, const HalfVector& m) const {
   if (wo.z <= 0.0f || wi.z == 0.0f) return vec3(0.0f);
-  const float under_sheen = std::fmin(sheen_scaling(wo), sheen_scaling(wi));
+  const float under_sheen = fmin_inline(sheen_scaling_o_, sheen_scaling(wi));
   if (wi.z < 0.0f) return coat_scale_ * under_sheen * (transmission(wo, wi) + diffuse_transmission(wo, wi));
-  vec3 f = coat_scale_ * (under_sheen * reflection(wo, wi) + sheen_color_ * sheen_.eval(wo, wi));
+  vec3 f = under_sheen * reflection(wo, wi, m);
+  if (sheen_max_ > 0.0f) f += sheen_color_ * sheen_.eval(wo, wi);  // without a sheen it adds 0
+  f = coat_scale_ * f;
   if (clearcoat_ > 0.0f) f += coat(wo, wi);
   return f;
 }
@@ -273,18 +294,16 @@ const char* GltfBsdf::lobe_name(int lobe) {
   return lobe >= 0 && lobe < kLobeCount ? kNames[lobe] : "none";
 }
 
-float GltfBsdf::lobe_pdf(int lobe, const vec3& wo, const vec3& wi) const {
+float GltfBsdf::lobe_pdf(int lobe, const vec3& wo, const vec3& wi, const HalfVector& m) const {
   switch (lobe) {
     case kDiffuse:
     case kSheen: return wi.z > 0.0f ? wi.z * kInvPi : 0.0f;
     case kMultiScatter: return wi.z > 0.0f ? multiscatter_pdf_mu(roughness_, wi.z) * (0.5f * kInvPi) : 0.0f;
     case kDiffuseTransmission: return wi.z < 0.0f ? -wi.z * kInvPi : 0.0f;
     case kClearcoat: return coat_pdf(wo, wi);
-    case kSpecular: {
+    case kSpecular:
       if (wi.z <= 0.0f) return 0.0f;
-      const vec3 h = glm::normalize(wo + wi);
-      return ggx_.visible_pdf(wo, h) / (4.0f * glm::dot(wo, h));
-    }
+      return GgxDistribution::visible_pdf(g1_o_, wo.z, m.cos_oh, m.d) / (4.0f * m.cos_oh);
     default: {  // transmission
       if (wi.z >= 0.0f || !refracts_) return 0.0f;  // the thin pass is a delta
       vec3 h = wi * eta_ + wo;
@@ -298,11 +317,13 @@ float GltfBsdf::lobe_pdf(int lobe, const vec3& wo, const vec3& wi) const {
   }
 }
 
-float GltfBsdf::pdf(const vec3& wo, const vec3& wi) const {
+float GltfBsdf::pdf(const vec3& wo, const vec3& wi) const { return pdf(wo, wi, half_vector(wo, wi)); }
+
+float GltfBsdf::pdf(const vec3& wo, const vec3& wi, const HalfVector& m) const {
   if (wo.z <= 0.0f || wi.z == 0.0f) return 0.0f;
   float p = 0.0f;
   for (int i = 0; i < kLobeCount; ++i)
-    if (weight_[i] > 0.0f) p += weight_[i] * lobe_pdf(i, wo, wi);
+    if (weight_[i] > 0.0f) p += weight_[i] * lobe_pdf(i, wo, wi, m);
   return p;
 }
 
@@ -318,7 +339,7 @@ bool GltfBsdf::sample(const vec3& wo, float u_lobe, const vec2& u, BsdfSample& s
     case kDiffuseTransmission: s.wi = -sample_cosine_hemisphere(u); break;
     case kSpecular: s.wi = reflect(wo, ggx_.sample_visible(wo, u)); break;
     case kMultiScatter: {
-      const float mu = multiscatter_sample_mu(roughness_, u.x), r = std::sqrt(std::fmax(0.0f, 1.0f - mu * mu));
+      const float mu = multiscatter_sample_mu(roughness_, u.x), r = std::sqrt(fmax_inline(0.0f, 1.0f - mu * mu));
       const float phi = 2.0f * kPi * u.y;
       s.wi = {r * std::cos(phi), r * std::sin(phi), mu};
       break;
@@ -343,8 +364,7 @@ bool GltfBsdf::sample(const vec3& wo, float u_lobe, const vec2& u, BsdfSample& s
   }
   const bool below = lobe == kTransmission || lobe == kDiffuseTransmission;
   if (below ? s.wi.z >= 0.0f : s.wi.z <= 0.0f) return false;
-  s.pdf = pdf(wo, s.wi);
-  s.f = eval(wo, s.wi);
+  s.f = eval(wo, s.wi, s.pdf);
   s.transmitted = below;
   return s.pdf > 0.0f && std::isfinite(s.pdf);
 }

@@ -59,7 +59,7 @@ struct BsdfSample {
 // Cosine-weighted direction on the upper hemisphere (Malley's method).
 inline vec3 sample_cosine_hemisphere(const vec2& u) {
   const vec2 d = sample_concentric_disk(u);
-  return {d.x, d.y, std::sqrt(std::fmax(0.0f, 1.0f - d.x * d.x - d.y * d.y))};
+  return {d.x, d.y, std::sqrt(fmax_inline(0.0f, 1.0f - d.x * d.x - d.y * d.y))};
 }
 
 class GltfBsdf {
@@ -72,8 +72,12 @@ class GltfBsdf {
   GltfBsdf(const ShadingPoint& sp, const vec3& wo, float eta,
            const Frame& frame = Frame{{1.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, {0.0f, 0.0f, 1.0f}});
 
+  // wo is the constructor's in every method (the lobes' weights and Smith's term toward wo
+  // are kept from it).
   vec3 eval(const vec3& wo, const vec3& wi) const;
   float pdf(const vec3& wo, const vec3& wi) const;
+  // Both at once, as sampling and light sampling need them: the half vector's terms once.
+  vec3 eval(const vec3& wo, const vec3& wi, float& pdf) const;
   bool sample(const vec3& wo, float u_lobe, const vec2& u, BsdfSample& s) const;
 
   // Whether eval() can be non-zero below the surface: refraction into a volume, or diffuse
@@ -100,13 +104,22 @@ class GltfBsdf {
   static vec3 schlick_refit(const vec3& f, float mu);
   vec3 film_reflectance(float mu) const;  // the film's e(mu), the Schlick curve through film_f0_
   float film_scale() const { return refracts_ ? 1.0f : specular_; }  // KHR_materials_specular's factor
+  // wo and wi's half vector, its cosine with wo and D there: what f and the pdf share
+  // (zero below the surface, where no reflection lobe reads it).
+  struct HalfVector {
+    vec3 h{0.0f};
+    float cos_oh = 0.0f, d = 0.0f;
+  };
+  HalfVector half_vector(const vec3& wo, const vec3& wi) const;
+  vec3 eval(const vec3& wo, const vec3& wi, const HalfVector& m) const;
+  float pdf(const vec3& wo, const vec3& wi, const HalfVector& m) const;
   void compensate(const vec3& wo);
   vec3 multiscatter(const vec3& wo, const vec3& wi) const;  // the metal's extra lobe
   void orient_lobes(const ShadingPoint& sp, const Frame& frame, const vec3& wo);
   vec3 coat(const vec3& wo, const vec3& wi) const;  // the clear coat's reflection
   float coat_pdf(const vec3& wo, const vec3& wi) const;
-  float lobe_pdf(int lobe, const vec3& wo, const vec3& wi) const;
-  vec3 reflection(const vec3& wo, const vec3& wi) const;  // diffuse + specular, below the coat
+  float lobe_pdf(int lobe, const vec3& wo, const vec3& wi, const HalfVector& m) const;
+  vec3 reflection(const vec3& wo, const vec3& wi, const HalfVector& m) const;  // diffuse + specular, below the coat
   vec3 transmission(const vec3& wo, const vec3& wi) const;
   vec3 diffuse_transmission(const vec3& wo, const vec3& wi) const;
 
@@ -137,10 +150,12 @@ class GltfBsdf {
   Frame coat_frame_{{1.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, {0.0f, 0.0f, 1.0f}};  // local to the coat's
   vec3 straight_{0.0f};  // the thin-walled straight pass; 0 for a volume or no transmission
   GgxDistribution ggx_, coat_ggx_;
+  float lambda_o_ = 0.0f, g1_o_ = 1.0f;  // Smith's lambda and G1 of ggx_ toward wo
   vec3 sheen_color_;
   CharlieSheen sheen_;
   float sheen_max_;  // max component of the sheen colour; 0 = no sheen
   float sheen_scaling(const vec3& w) const;  // 1 - max(sheenColor) E(w): what the sheen lets through
+  float sheen_scaling_o_ = 1.0f;  // toward wo
   float coat_scale_;  // 1 - clearcoat * Fc(wo): what passes the coat, for wo
   float weight_[kLobeCount];  // lobe selection probabilities for this wo, summing to 1
 };

@@ -41,13 +41,16 @@ struct GgxDistribution {
     return 0.5f * (std::sqrt(1.0f + a2_tan2) - 1.0f);
   }
   float G1(const vec3& w) const { return 1.0f / (1.0f + lambda(w)); }
-  // Height-correlated masking-shadowing (Heitz 2014), as the glTF specification uses.
-  float G2(const vec3& wo, const vec3& wi) const { return 1.0f / (1.0f + lambda(wo) + lambda(wi)); }
+  // Height-correlated masking-shadowing (Heitz 2014), as the glTF specification uses; the
+  // second form from the two lambdas, for a caller that keeps wo's per shading point.
+  float G2(const vec3& wo, const vec3& wi) const { return G2(lambda(wo), lambda(wi)); }
+  static float G2(float lambda_o, float lambda_i) { return 1.0f / (1.0f + lambda_o + lambda_i); }
 
-  // Density of the normals visible from w (w.z > 0): G1(w) max(0, w.m) D(m) / w.z.
-  float visible_pdf(const vec3& w, const vec3& m) const {
-    const float wm = glm::dot(w, m);
-    return wm > 0.0f && w.z > 0.0f ? G1(w) * wm * D(m) / w.z : 0.0f;
+  // Density of the normals visible from w (w.z > 0): G1(w) max(0, w.m) D(m) / w.z; the
+  // second form from those parts (G1(w) kept per shading point, D(m) shared with f).
+  float visible_pdf(const vec3& w, const vec3& m) const { return visible_pdf(G1(w), w.z, glm::dot(w, m), D(m)); }
+  static float visible_pdf(float g1, float wz, float wm, float d) {
+    return wm > 0.0f && wz > 0.0f ? g1 * wm * d / wz : 0.0f;
   }
 
   // A visible normal for w (w.z > 0), Heitz 2018, "Sampling the GGX Distribution of
@@ -61,9 +64,9 @@ struct GgxDistribution {
     const float r = std::sqrt(u.x), phi = 2.0f * kPi * u.y;
     const float p1 = r * std::cos(phi);
     const float s = 0.5f * (1.0f + vh.z);
-    const float p2 = (1.0f - s) * std::sqrt(std::fmax(0.0f, 1.0f - p1 * p1)) + s * r * std::sin(phi);
-    const vec3 nh = p1 * t1 + p2 * t2 + std::sqrt(std::fmax(0.0f, 1.0f - p1 * p1 - p2 * p2)) * vh;
-    return from_axis(glm::normalize(vec3(alpha_x * nh.x, alpha_y * nh.y, std::fmax(1e-6f, nh.z))));
+    const float p2 = (1.0f - s) * std::sqrt(fmax_inline(0.0f, 1.0f - p1 * p1)) + s * r * std::sin(phi);
+    const vec3 nh = p1 * t1 + p2 * t2 + std::sqrt(fmax_inline(0.0f, 1.0f - p1 * p1 - p2 * p2)) * vh;
+    return from_axis(glm::normalize(vec3(alpha_x * nh.x, alpha_y * nh.y, fmax_inline(1e-6f, nh.z))));
   }
 };
 
@@ -73,7 +76,7 @@ inline vec3 reflect(const vec3& w, const vec3& m) { return 2.0f * glm::dot(w, m)
 // False on total internal reflection.
 inline bool refract(const vec3& w, const vec3& m, float eta, vec3& out) {
   const float cos_i = glm::dot(w, m);
-  const float sin2_t = std::fmax(0.0f, 1.0f - cos_i * cos_i) / (eta * eta);
+  const float sin2_t = fmax_inline(0.0f, 1.0f - cos_i * cos_i) / (eta * eta);
   if (sin2_t >= 1.0f) return false;
   const float cos_t = std::sqrt(1.0f - sin2_t);
   out = -w / eta + (cos_i / eta - cos_t) * m;

@@ -105,12 +105,13 @@ vec3 area_light_contribution(const RenderScene& scene, const ShadingContext& c, 
   AreaLightSample ls;
   vec3 wi_local;
   if (!scene.area_lights->sample(c.s.p, c.time, u.z, {u.x, u.y}, ls) || !c.usable(ls.wi, wi_local)) return vec3(0.0f);
-  const vec3 f = c.bsdf.eval(c.wo_local, wi_local);
+  float bsdf_pdf;
+  const vec3 f = c.bsdf.eval(c.wo_local, wi_local, bsdf_pdf);
   if (f == vec3(0.0f) || ls.radiance == vec3(0.0f)) return vec3(0.0f);
   ++counters.rays;
   const vec3 through = visibility(scene, c.origin_towards(ls.wi), ls.wi, ls.distance * (1.0f - 1e-4f), c.time);
   if (through == vec3(0.0f)) return vec3(0.0f);
-  const float weight = strategy_weight(mode, true, ls.pdf, c.bsdf.pdf(c.wo_local, wi_local));
+  const float weight = strategy_weight(mode, true, ls.pdf, bsdf_pdf);
   return through * f * ls.radiance * (std::fabs(wi_local.z) * weight / ls.pdf);
 }
 
@@ -122,12 +123,13 @@ vec3 environment_contribution(const RenderScene& scene, const ShadingContext& c,
   const vec3 wi = scene.environment.sample(u, pdf);
   vec3 wi_local;
   if (!(pdf > 0.0f) || !c.usable(wi, wi_local)) return vec3(0.0f);
-  const vec3 f = c.bsdf.eval(c.wo_local, wi_local);
+  float bsdf_pdf;
+  const vec3 f = c.bsdf.eval(c.wo_local, wi_local, bsdf_pdf);
   if (f == vec3(0.0f)) return vec3(0.0f);
   ++counters.rays;
   const vec3 through = visibility(scene, c.origin_towards(wi), wi, std::numeric_limits<float>::infinity(), c.time);
   if (through == vec3(0.0f)) return vec3(0.0f);
-  const float weight = strategy_weight(mode, true, pdf, c.bsdf.pdf(c.wo_local, wi_local));
+  const float weight = strategy_weight(mode, true, pdf, bsdf_pdf);
   return through * f * scene.environment.radiance(wi) * (std::fabs(wi_local.z) * weight / pdf);
 }
 
@@ -283,7 +285,7 @@ vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ra
     passed = 0.0f;
     if (bs.transmitted && !sp.thin_walled) absorption = front ? sp.absorption : vec3(0.0f);
     if (++bounce >= params.roulette_start) {
-      const float survive = std::fmin(1.0f, max_component(throughput));
+      const float survive = fmin_inline(1.0f, max_component(throughput));
       if (rng.next() >= survive) {
         if (record) record->end = "Russian roulette";
         break;

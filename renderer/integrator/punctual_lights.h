@@ -46,7 +46,7 @@ inline bool sample_punctual_light(const PunctualLight& light, const LightPlaceme
   }
   if (light.type == PunctualLight::Type::Spot) {
     const float cos_outer = std::cos(light.outer_cone_angle), cos_inner = std::cos(light.inner_cone_angle);
-    const float scale = 1.0f / std::fmax(0.001f, cos_inner - cos_outer);
+    const float scale = 1.0f / fmax_inline(0.001f, cos_inner - cos_outer);
     const float t = glm::clamp((glm::dot(-s.wi, at.direction) - cos_outer) * scale, 0.0f, 1.0f);
     falloff *= t * t;
   }

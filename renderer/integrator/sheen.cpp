@@ -14,7 +14,7 @@ std::array<float, kCos * kAlpha> build_table() {
   for (int a = 0; a < kAlpha; ++a) {
     const CharlieSheen sheen{kMinSheenAlpha + (1.0f - kMinSheenAlpha) * a / (kAlpha - 1)};
     for (int c = 0; c < kCos; ++c) {
-      const float mu = std::fmax(1e-3f, float(c) / (kCos - 1));
+      const float mu = fmax_inline(1e-3f, float(c) / (kCos - 1));
       const vec3 wo(std::sqrt(1.0f - mu * mu), 0.0f, mu);
       double sum = 0.0;
       constexpr int n = 64;

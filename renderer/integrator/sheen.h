@@ -15,7 +15,7 @@ struct CharlieSheen {
 
   float D(const vec3& h) const {
     const float inv = 1.0f / alpha;
-    const float sin2 = std::fmax(0.0f, 1.0f - h.z * h.z);
+    const float sin2 = fmax_inline(0.0f, 1.0f - h.z * h.z);
     return (2.0f + inv) * std::pow(sin2, 0.5f * inv) * (0.5f * kInvPi);
   }
   // f without the sheen colour; wo, wi in the upper hemisphere.

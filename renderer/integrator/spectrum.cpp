@@ -73,7 +73,7 @@ WavelengthSample sample_wavelength(float u) {
   const float mass = t.cdf[i + 1] - t.cdf[i];  // for the position in the bin only: rounding
   const float frac = mass > 0.0f ? std::clamp((target - t.cdf[i]) / mass, 0.0f, 0.99999f) : 0.5f;
   WavelengthSample s;
-  s.lambda = std::fmin(kLambdaMin + i + frac, kLambdaMax - 1e-3f);
+  s.lambda = fmin_inline(kLambdaMin + i + frac, kLambdaMax - 1e-3f);
   // p from the bin itself: exact where the cdf's differences are tiny (and s.lambda may
   // round into the next bin).
   const vec3& w = t.response[i];

@@ -43,7 +43,7 @@ vec3 wavelength_response(float lambda);
 // extension specifies: n = max(ior + (ior - 1) / V (523655 / lambda^2 - 1.5168), 1).
 inline float dispersive_ior(float ior, float dispersion, float lambda) {
   const float inv_abbe = dispersion / 20.0f;
-  return std::fmax(ior + (ior - 1.0f) * inv_abbe * (523655.0f / (lambda * lambda) - 1.5168f), 1.0f);
+  return fmax_inline(ior + (ior - 1.0f) * inv_abbe * (523655.0f / (lambda * lambda) - 1.5168f), 1.0f);
 }
 
 }  // namespace tessera
