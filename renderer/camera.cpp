@@ -29,12 +29,14 @@ Ray RenderCamera::generate_ray(const vec2& film, const vec2& lens, float time) c
   const vec3 world_dir = glm::mat3(to_world) * dir;
   const float length = glm::length(world_dir);
   Ray ray;
-  ray.origin = vec3(to_world * vec4(origin, 1.0f));
+  // A pinhole's rays start at the camera's position: the transform's translation, exactly.
+  ray.origin = origin == vec3(0.0f) ? vec3(to_world[3]) : vec3(to_world * vec4(origin, 1.0f));
   ray.direction = world_dir / length;
   // The near and far planes are depths along the view axis.
-  const float axial = -dir.z / length;
-  ray.tmin = znear > 0.0f ? znear / axial : 0.0f;
-  ray.tmax = zfar > znear && zfar > 0.0f ? zfar / axial : std::numeric_limits<float>::infinity();
+  const bool near = znear > 0.0f, far = zfar > znear && zfar > 0.0f;
+  const float axial = near || far ? -dir.z / length : 1.0f;
+  ray.tmin = near ? znear / axial : 0.0f;
+  ray.tmax = far ? zfar / axial : std::numeric_limits<float>::infinity();
   ray.time = time;
   return ray;
 }
