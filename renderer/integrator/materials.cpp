@@ -1,30 +1,58 @@
 #include "renderer/integrator/materials.h"
 
+#include <array>
+
 #include <tbb/parallel_for.h>
 
 namespace tessera {
+
+namespace {
+
+// Every texture of a material, with the encoding it is read in (colours sRGB, data linear).
+struct TextureSlot {
+  const TextureRef* ref;
+  bool srgb;
+};
+
+std::array<TextureSlot, 18> texture_slots(const Material& m) {
+  return {{{&m.base_color_texture, true}, {&m.emissive_texture, true}, {&m.specular_color_texture, true},
+           {&m.sheen_color_texture, true}, {&m.diffuse_transmission_color_texture, true},
+           {&m.metallic_roughness_texture, false}, {&m.normal_texture, false}, {&m.transmission_texture, false},
+           {&m.thickness_texture, false}, {&m.specular_texture, false}, {&m.clearcoat_texture, false},
+           {&m.clearcoat_roughness_texture, false}, {&m.sheen_roughness_texture, false},
+           {&m.clearcoat_normal_texture, false}, {&m.anisotropy_texture, false},
+           {&m.diffuse_transmission_texture, false}, {&m.iridescence_texture, false},
+           {&m.iridescence_thickness_texture, false}}};
+}
+
+bool textured(const Material& m) {
+  for (const TextureSlot& slot : texture_slots(m))
+    if (slot.ref->present()) return true;
+  return false;
+}
+
+}  // namespace
 
 MaterialTable::MaterialTable(const SceneDescription& scene) : materials_(scene.materials) {
   srgb_.resize(scene.images.size());
   linear_.resize(scene.images.size());
   std::vector<std::uint8_t> need_srgb(scene.images.size()), need_linear(scene.images.size());
-  for (const Material& m : materials_) {
-    for (const TextureRef* srgb : {&m.base_color_texture, &m.emissive_texture, &m.specular_color_texture,
-                                   &m.sheen_color_texture, &m.diffuse_transmission_color_texture})
-      if (srgb->present()) need_srgb[srgb->image] = 1;
-    for (const TextureRef* linear :
-         {&m.metallic_roughness_texture, &m.normal_texture, &m.transmission_texture, &m.thickness_texture,
-          &m.specular_texture, &m.clearcoat_texture, &m.clearcoat_roughness_texture, &m.sheen_roughness_texture,
-          &m.clearcoat_normal_texture, &m.anisotropy_texture, &m.diffuse_transmission_texture,
-          &m.iridescence_texture, &m.iridescence_thickness_texture})
-      if (linear->present()) need_linear[linear->image] = 1;
-  }
+  for (const Material& m : materials_)
+    for (const TextureSlot& slot : texture_slots(m))
+      if (slot.ref->present()) (slot.srgb ? need_srgb : need_linear)[slot.ref->image] = 1;
   // Each image in each encoding it is read in, all at once (make_texture_image splits rows too).
   tbb::parallel_for(std::size_t{0}, 2 * scene.images.size(), [&](std::size_t k) {
     const std::size_t i = k / 2;
     if (k % 2 == 0 && need_srgb[i]) srgb_[i] = make_texture_image(scene.images[i], ColorEncoding::SRGB);
     if (k % 2 == 1 && need_linear[i]) linear_[i] = make_texture_image(scene.images[i], ColorEncoding::Linear);
   });
+  SurfaceHit plain;  // white, no tangent: what the constant points are evaluated at
+  plain.p = vec3(0.0f);
+  plain.ng = plain.ns = vec3(0.0f, 0.0f, 1.0f);
+  for (const Material& m : materials_) {
+    constant_.push_back(!textured(m));
+    constant_point_.push_back(constant_.back() ? evaluate(m, plain) : ShadingPoint{});
+  }
 }
 
 const Material& MaterialTable::material(int index) const {
@@ -102,7 +130,20 @@ vec3 MaterialTable::emission(const Material& m, const SurfaceHit& hit) const {
 }
 
 ShadingPoint MaterialTable::evaluate(const SurfaceHit& hit) const {
-  const Material& m = material(hit.material);
+  if (hit.material < 0 || !constant_[hit.material]) return evaluate(material(hit.material), hit);
+  // The same values as evaluate(m, hit) gives: what differs from the white, tangentless hit.
+  const Material& m = materials_[hit.material];
+  ShadingPoint sp = constant_point_[hit.material];
+  if (hit.color != vec4(1.0f)) {
+    const vec4 base = m.base_color_factor * vec4(1.0f) * hit.color;
+    sp.base_color = glm::clamp(vec3(base), 0.0f, 1.0f);
+    sp.alpha = glm::clamp(base.a, 0.0f, 1.0f);
+  }
+  if (!m.unlit && m.anisotropy_strength > 0.0f) sp.anisotropy_direction = anisotropy_direction(m, hit, sp.anisotropy);
+  return sp;
+}
+
+ShadingPoint MaterialTable::evaluate(const Material& m, const SurfaceHit& hit) const {
   ShadingPoint sp;
   const vec4 base = m.base_color_factor * lookup(m.base_color_texture, srgb_, hit) * hit.color;
   sp.base_color = glm::clamp(vec3(base), 0.0f, 1.0f);

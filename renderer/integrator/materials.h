@@ -56,8 +56,15 @@ class MaterialTable {
   vec3 perturbed_normal(const TextureRef& map, float scale, const SurfaceHit& hit) const;
   vec3 anisotropy_direction(const Material& m, const SurfaceHit& hit, float& strength) const;
 
+  ShadingPoint evaluate(const Material& m, const SurfaceHit& hit) const;
+
   std::vector<Material> materials_;
   Material default_material_;  // the glTF default: white, metallic 1, roughness 1
+  // A material without textures is the same at every hit but for its vertex colour and its
+  // anisotropy's tangent: evaluated once, at a white vertex without a tangent (by index;
+  // `constant_` false where the material has a texture).
+  std::vector<ShadingPoint> constant_point_;
+  std::vector<char> constant_;
   std::vector<TextureImage> srgb_, linear_;  // by image index; empty where unused
 };
 
