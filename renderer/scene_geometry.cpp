@@ -388,12 +388,22 @@ void shadow_filter(const RTCFilterFunctionNArguments* args) {
 
 }  // namespace
 
+namespace {
+
+// What a material's textures read at (u, v) of the triangle idx: its texture coordinates and
+// vertex colour (left as they are where the mesh has none).
+void texture_attributes(const TriangleMesh& m, const std::uint32_t* idx, float u, float v, vec2 uv[2], vec4& color) {
+  if (!m.texcoords0.empty()) uv[0] = interpolate(m.texcoords0, idx, u, v);
+  if (!m.texcoords1.empty()) uv[1] = interpolate(m.texcoords1, idx, u, v);
+  if (!m.colors.empty()) color = interpolate(m.colors, idx, u, v);
+}
+
+}  // namespace
+
 float SceneGeometry::FilterView::alpha_at(std::uint32_t prim, float u, float v) const {
-  const std::uint32_t* idx = &mesh->indices[3 * prim];
   vec2 uv[2] = {vec2(0.0f), vec2(0.0f)};
-  if (!mesh->texcoords0.empty()) uv[0] = interpolate(mesh->texcoords0, idx, u, v);
-  if (!mesh->texcoords1.empty()) uv[1] = interpolate(mesh->texcoords1, idx, u, v);
-  const vec4 color = mesh->colors.empty() ? vec4(1.0f) : interpolate(mesh->colors, idx, u, v);
+  vec4 color(1.0f);
+  texture_attributes(*mesh, &mesh->indices[3 * prim], u, v, uv, color);
   return materials->opacity(mesh->material, uv, color);
 }
 
@@ -611,12 +621,20 @@ SurfaceHit SceneGeometry::surface(const Ray& ray, const HitRecord& hit) const {
     vec3 tw = pl.in_world_space ? vec3(t) : glm::mat3(pl.to_world) * vec3(t);
     s.tangent = vec4(tw, t.w < 0.0f ? -1.0f : 1.0f);
   }
-  if (!m.texcoords0.empty()) s.uv[0] = interpolate(m.texcoords0, idx, hit.u, hit.v);
+  texture_attributes(m, idx, hit.u, hit.v, s.uv, s.color);
   if (m.tangents.empty() && !m.texcoords0.empty())
     s.tangent = face_tangent(p0, p1, p2, m.texcoords0[idx[0]], m.texcoords0[idx[1]], m.texcoords0[idx[2]], s.ns);
-  if (!m.texcoords1.empty()) s.uv[1] = interpolate(m.texcoords1, idx, hit.u, hit.v);
-  if (!m.colors.empty()) s.color = interpolate(m.colors, idx, hit.u, hit.v);
   s.material = m.material;
+  return s;
+}
+
+SurfaceHit SceneGeometry::texture_point(const HitRecord& hit) const {
+  Placement scratch{nullptr};
+  const Placement& pl = placement(hit, scratch);
+  SurfaceHit s;
+  texture_attributes(*pl.mesh, &pl.mesh->indices[3 * hit.prim], hit.u, hit.v, s.uv, s.color);
+  s.material = pl.mesh->material;
+  s.t = hit.t;
   return s;
 }
 

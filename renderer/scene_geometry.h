@@ -81,6 +81,9 @@ class SceneGeometry {
                      const void* user) const;
   // The surface at the hit, where it is at hit.time.
   SurfaceHit surface(const Ray& ray, const HitRecord& hit) const;
+  // Only what a material's textures read there (texture coordinates, vertex colour, the
+  // material), as surface() gives them: light sampling's emission needs no position or frame.
+  SurfaceHit texture_point(const HitRecord& hit) const;
   // The world-space corners of the hit's triangle (geom, instance, prim) at hit.time, in the
   // order surface() reads them (its u and v are the weights of the second and third).
   struct Corners {

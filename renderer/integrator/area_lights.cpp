@@ -23,7 +23,7 @@ double textured_luminance(const SceneGeometry& geometry, const MaterialTable& ma
   for (const auto& b : kPoints) {
     where.u = b[0];
     where.v = b[1];
-    sum += luminance(materials.emission(geometry.surface(Ray{vec3(0.0f), vec3(0, 0, 1)}, where)));
+    sum += luminance(materials.emission(geometry.texture_point(where)));
   }
   return std::max(sum / 4.0, 0.01 * emitted_luminance(m));
 }
@@ -131,7 +131,7 @@ bool AreaLights::sample(const vec3& p, float time, float u_select, const vec2& u
     at.v = b2;
     at.t = s.distance;
     at.time = time;
-    s.radiance = materials_.emission(geometry_.surface(Ray{p, s.wi}, at));
+    s.radiance = materials_.emission(geometry_.texture_point(at));
   }
   s.pdf = pmf * dist2 / (sh.area * abs_cos);
   return std::isfinite(s.pdf) && s.pdf > 0.0f;
