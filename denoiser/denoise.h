@@ -62,6 +62,9 @@ struct DenoiseParams {
   int variance_radius = 2;  // the 1-dof per-pixel variance is averaged over (2 r + 1)^2 pixels
   int selection_radius = 3;  // the estimated error of each candidate is averaged likewise
   int selection_blend_radius = 3;  // each pixel blends the candidates chosen in its (2 r + 1)^2 box
+  // Albedo demodulation (denoiser/demodulate.h): the regression filters colour / (albedo + epsilon).
+  bool demodulate = true;
+  float demodulation_epsilon = 0.01f;
   float ridge = 1e-3f;  // Tikhonov term on the feature coefficients, relative to the weight sum
 };
 
