@@ -7,7 +7,9 @@
 // independent of the data. The NL-means distances compare log(1 + colour), with variances
 // estimated in that range: a bright, noisy highlight is then far from a dark, quiet pixel
 // (compared linearly, its variance made it "similar" to everything, and its energy leaked
-// into dark neighbours' fits as halos). Two candidate bandwidths are run; per pixel, they and
+// into dark neighbours' fits as halos). The colour is regressed demodulated, divided by the
+// albedo plus epsilon (denoiser/demodulate.h), and multiplied back before the selection. Two
+// candidate bandwidths are run; per pixel, they and
 // the unfiltered colour are chosen by the relative error the half buffers estimate, and
 // blended over a small box; the two halves are then combined.
 //
