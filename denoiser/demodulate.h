@@ -3,7 +3,9 @@
 // multiplied back. A texture then no longer makes neighbouring pixels dissimilar for NL-means
 // (so they are averaged) and its detail is restored exactly by the factor. The factor is the
 // same for both halves, so it changes no half's independence; epsilon keeps black albedo (and
-// the background, whose albedo is 0) finite: there the colour is only scaled.
+// the background, whose albedo is 0) finite: there the colour is only scaled. (Dividing each
+// half by its own albedo half instead was measured worse: where one half's samples see the sky
+// and the other's a surface, the halves differ 100x; docs/performance.md, Denoiser quality.)
 #pragma once
 
 #include "denoiser/prepare.h"

@@ -51,7 +51,8 @@ struct DenoiseParams {
   // each solve reconstructs its whole window); stride must be at most radius + 1. 4 and 3
   // cost the same time as 6 and 4 (each centre's window is 2.1x smaller, there are 1.8x more
   // centres); with demodulation they measured lower relMSE on all three scenes of
-  // docs/performance.md (without it, 4 and 3 made DamagedHelmet worse).
+  // docs/performance.md (without it, 4 and 3 made DamagedHelmet worse), though the Cornell
+  // box's edges got worse.
   int radius = 4;
   int stride = 3;
   // The candidate NL-means bandwidths k: a strict one for detail, a wide one for smooth
