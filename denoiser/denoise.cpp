@@ -4,6 +4,7 @@
 
 #include <tbb/task_arena.h>
 
+#include "denoiser/demodulate.h"
 #include "denoiser/feature_filter.h"
 #include "denoiser/prepare.h"
 #include "denoiser/regression.h"
@@ -16,10 +17,17 @@ namespace {
 using namespace denoiser;
 
 DenoiseResult run(const DenoiseInput& in, const DenoiseParams& p) {
-  const Halves halves = prepare_halves(in, p);
+  Planes factor;
+  if (p.demodulate) factor = demodulation_factor(in, p.demodulation_epsilon);
+  Halves halves = p.demodulate ? prepare_halves(demodulated_colour(in, factor), p) : prepare_halves(in, p);
   const Features features = prepare_features(in, p, halves);
   const Planes filtered_features = prefilter_features(features, p.feature_radius, p.feature_bandwidth);
-  const Filtered filtered = regress(halves, filtered_features, p);
+  Filtered filtered = regress(halves, filtered_features, p);
+  if (p.demodulate) {  // the selection judges colour, as relMSE does
+    remodulate(halves, factor);
+    for (auto& half : filtered.filtered)
+      for (Planes& candidate : half) remodulate(candidate, factor);
+  }
   const Selection selection = select_and_combine(halves, filtered, p.selection_radius, p.selection_blend_radius);
 
   const std::size_t n = selection.rgb.pixels();

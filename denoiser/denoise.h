@@ -7,7 +7,9 @@
 // independent of the data. The NL-means distances compare log(1 + colour), with variances
 // estimated in that range: a bright, noisy highlight is then far from a dark, quiet pixel
 // (compared linearly, its variance made it "similar" to everything, and its energy leaked
-// into dark neighbours' fits as halos). Two candidate bandwidths are run; per pixel, they and
+// into dark neighbours' fits as halos). The colour is regressed demodulated, divided by the
+// albedo plus epsilon (denoiser/demodulate.h), and multiplied back before the selection. Two
+// candidate bandwidths are run; per pixel, they and
 // the unfiltered colour are chosen by the relative error the half buffers estimate, and
 // blended over a small box; the two halves are then combined.
 //
@@ -46,13 +48,13 @@ struct DenoiseInput {
 struct DenoiseParams {
   int threads = 0;  // 0: all cores (TBB's default concurrency)
   // Regression window (2 radius + 1)^2 pixels, centres every `stride` pixels (collaborative:
-  // each solve reconstructs its whole window); stride must be at most radius + 1. 6 and 4
-  // (before: 7 and 5) in the same time: relMSE over two seeds at 320 wide, grid of spheres
-  // 4.43e-3 -> 4.06e-3, Cornell box 6.36e-4 -> 6.30e-4, DamagedHelmet 2.39e-3 -> 2.44e-3
-  // (within its seed-to-seed spread); 4 and 3 helped the grid more (3.60e-3) but cost 10% more
-  // time and the helmet 12%.
-  int radius = 6;
-  int stride = 4;
+  // each solve reconstructs its whole window); stride must be at most radius + 1. 4 and 3
+  // cost the same time as 6 and 4 (each centre's window is 2.1x smaller, there are 1.8x more
+  // centres); with demodulation they measured lower relMSE on all three scenes of
+  // docs/performance.md (without it, 4 and 3 made DamagedHelmet worse), though the Cornell
+  // box's edges got worse.
+  int radius = 4;
+  int stride = 3;
   // The candidate NL-means bandwidths k: a strict one for detail, a wide one for smooth
   // regions (the unfiltered colour covers where both filters err: 0.35 and 2 measured lower
   // relMSE than NFOR's 0.5 and 1 on the Cornell box, DamagedHelmet and the grid of spheres).
@@ -62,6 +64,12 @@ struct DenoiseParams {
   int variance_radius = 2;  // the 1-dof per-pixel variance is averaged over (2 r + 1)^2 pixels
   int selection_radius = 3;  // the estimated error of each candidate is averaged likewise
   int selection_blend_radius = 3;  // each pixel blends the candidates chosen in its (2 r + 1)^2 box
+  // Albedo demodulation (denoiser/demodulate.h): the regression filters colour / (albedo +
+  // epsilon). 0.1 rather than 0.01: at an edge or under depth of field the mean albedo is noisy
+  // and a small epsilon lets that noise divide the colour (the grid of spheres 3.1e-3 at 0.1,
+  // 4.4e-3 at 0.001); 0.05 to 0.3 measured alike.
+  bool demodulate = true;
+  float demodulation_epsilon = 0.1f;
   float ridge = 1e-3f;  // Tikhonov term on the feature coefficients, relative to the weight sum
 };
 

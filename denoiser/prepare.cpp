@@ -126,6 +126,7 @@ void validate(const DenoiseInput& in, const DenoiseParams& p) {
     if (!(k > 0.0f)) throw std::invalid_argument("denoise: bandwidths must be > 0");
   if (!(p.feature_bandwidth > 0.0f)) throw std::invalid_argument("denoise: feature_bandwidth must be > 0");
   if (!(p.ridge >= 0.0f)) throw std::invalid_argument("denoise: ridge must be >= 0");
+  if (!(p.demodulation_epsilon > 0.0f)) throw std::invalid_argument("denoise: demodulation_epsilon must be > 0");
   if (p.threads < 0) throw std::invalid_argument("denoise: threads must be >= 0");
 }
 

@@ -1,14 +1,14 @@
 #!/usr/bin/env bash
 # How close tessera's denoised low-spp frame comes to a converged reference, against plain
 # renders: renders SCENE at a high spp with --aov albedo,normal (the reference, seed 1000,
-# cached in OUT_DIR), then with seed 1: SPP (16) spp noisy, SPP spp with --denoise, HIGH_SPP
+# cached in OUT_DIR), then with seed SEED (1): SPP (16) spp noisy, SPP spp with --denoise, HIGH_SPP
 # (256) spp noisy, and prints a Markdown table of each one's relative MSE against the
 # reference, over the whole image and inside the edge mask (pixels where the reference's
 # albedo or normal changes, dilated by one pixel: where a feature-guided denoiser blurs), with
 # wall-clock and tessera's own render seconds. Writes into OUT_DIR: NAME-side-by-side.png
 # (noisy | denoised | HIGH_SPP | reference), NAME-errors.png (their error maps, same order and
 # log scale) and NAME-edges.png (the mask).
-#   tools/denoise-quality.sh [--spp N] [--high-spp N] [--ref-spp N] [--width W] [--height H] [--threads T] [--envmap FILE] [--out DIR] [--fresh-ref] SCENE [-- TESSERA_OPTION...]
+#   tools/denoise-quality.sh [--spp N] [--high-spp N] [--ref-spp N] [--seed S] [--width W] [--height H] [--threads T] [--envmap FILE] [--out DIR] [--fresh-ref] SCENE [-- TESSERA_OPTION...]
 # TESSERA_OPTIONs go to every render, the reference included (e.g. -- --aperture 0.1047207
 # --focus-distance 10). Without --height, the camera's aspect ratio decides it. Until the
 # tessera binary has --denoise (TESSERA=path, default build/tessera), the denoised column is
@@ -19,13 +19,14 @@ set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 tessera="${TESSERA:-$root/build/tessera}"
 source "$root/tools/measure-lib.sh"
-usage="usage: $0 [--spp N] [--high-spp N] [--ref-spp N] [--width W] [--height H] [--threads T] [--envmap FILE] [--out DIR] [--fresh-ref] SCENE [-- TESSERA_OPTION...]"
-spp=16 high_spp=256 ref_spp=4096 width=640 height="" threads=2 envmap="" out=/tmp/tessera-denoise-quality fresh=0
+usage="usage: $0 [--spp N] [--high-spp N] [--ref-spp N] [--seed S] [--width W] [--height H] [--threads T] [--envmap FILE] [--out DIR] [--fresh-ref] SCENE [-- TESSERA_OPTION...]"
+spp=16 high_spp=256 ref_spp=4096 seed=1 width=640 height="" threads=2 envmap="" out=/tmp/tessera-denoise-quality fresh=0
 while [[ $# -gt 0 && "$1" == --?* ]]; do
   case "$1" in
     --spp) spp=$2; shift 2 ;;
     --high-spp) high_spp=$2; shift 2 ;;
     --ref-spp) ref_spp=$2; shift 2 ;;
+    --seed) seed=$2; shift 2 ;;
     --width) width=$2; shift 2 ;;
     --height) height=$2; shift 2 ;;
     --threads) threads=$2; shift 2 ;;
@@ -75,15 +76,15 @@ row() {  # label wall-seconds image.exr
 panels=() errors=()
 for run in noisy denoised high; do
   case $run in
-    noisy) img="$p-${spp}spp.exr" label="$spp spp" opts=(--spp "$spp") ;;
-    denoised) img="$p-${spp}spp-denoised.exr" label="$spp spp, denoised" opts=(--spp "$spp" --denoise --aov albedo,normal) ;;
-    high) img="$p-${high_spp}spp.exr" label="$high_spp spp" opts=(--spp "$high_spp") ;;
+    noisy) img="$p-${spp}spp-s$seed.exr" label="$spp spp" opts=(--spp "$spp") ;;
+    denoised) img="$p-${spp}spp-s$seed-denoised.exr" label="$spp spp, denoised" opts=(--spp "$spp" --denoise --aov albedo,normal) ;;
+    high) img="$p-${high_spp}spp-s$seed.exr" label="$high_spp spp" opts=(--spp "$high_spp") ;;
   esac
   if [[ $run == denoised && $has_denoise == 0 ]]; then
     echo "| $label | not in this build | | | |"
     continue
   fi
-  wall=$(tessera_render "$img" "$scene" --seed 1 "${opts[@]}")
+  wall=$(tessera_render "$img" "$scene" --seed "$seed" "${opts[@]}")
   row "$label" "$wall" "$img"
   metrics error-map "$img" "$ref" -o "$p-error-$run.png"
   panels+=("$img") errors+=("$p-error-$run.png")

@@ -1,0 +1,40 @@
+#include "denoiser/demodulate.h"
+
+#include <algorithm>
+
+namespace tessera::denoiser {
+
+Planes demodulation_factor(const DenoiseInput& in, float epsilon) {
+  Planes f = to_planes(in.albedo, in.width, in.height, 3);
+  for (float& v : f.data) v = std::max(v, 0.0f) + epsilon;
+  return f;
+}
+
+DenoiseInput demodulated_colour(const DenoiseInput& in, const Planes& factor) {
+  DenoiseInput out;
+  out.width = in.width, out.height = in.height;
+  out.samples = in.samples;
+  const std::size_t n = factor.pixels();
+  for (auto [src, dst] : {std::pair{&in.color_even, &out.color_even}, std::pair{&in.color_odd, &out.color_odd}}) {
+    dst->resize(src->size());
+    for (std::size_t i = 0; i < n; ++i)
+      for (int k = 0; k < 3; ++k) (*dst)[3 * i + k] = (*src)[3 * i + k] / factor.at(k, i);  // NaN stays NaN: missing
+  }
+  return out;
+}
+
+void remodulate(Planes& colour, const Planes& factor) {
+  for (std::size_t j = 0; j < colour.data.size(); ++j) colour.data[j] *= factor.data[j];
+}
+
+void remodulate(Halves& halves, const Planes& factor) {
+  Planes square = factor;
+  for (float& v : square.data) v *= v;
+  for (Half& h : halves.h) {
+    remodulate(h.color, factor);
+    remodulate(h.variance, square);
+    remodulate(h.pixel_variance, square);
+  }
+}
+
+}  // namespace tessera::denoiser
