@@ -503,6 +503,44 @@ bool SceneGeometry::intersect(const Ray& ray, HitRecord& hit, vec3* geometric_no
   return true;
 }
 
+void SceneGeometry::intersect_packet(const Ray* rays, int n, ClosestHit* hits, vec3* normals) const {
+  if (n == 1) {  // the same hit, without the packet's set-up
+    hits[0].found = intersect(rays[0], hits[0].hit, normals);
+    return;
+  }
+  constexpr int N = kPacketSize;
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  alignas(64) int valid[N];
+  alignas(64) RTCRayHit16 rh;
+  for (int i = 0; i < N; ++i) {
+    valid[i] = i < n ? -1 : 0;
+    const Ray& ray = rays[i < n ? i : 0];  // idle lanes hold a copy, which Embree ignores
+    rh.ray.org_x[i] = ray.origin.x;
+    rh.ray.org_y[i] = ray.origin.y;
+    rh.ray.org_z[i] = ray.origin.z;
+    rh.ray.dir_x[i] = ray.direction.x;
+    rh.ray.dir_y[i] = ray.direction.y;
+    rh.ray.dir_z[i] = ray.direction.z;
+    rh.ray.tnear[i] = ray.tmin;
+    rh.ray.tfar[i] = ray.tmax;
+    rh.ray.time[i] = ray.time;
+    rh.ray.mask[i] = 0xffffffffu;
+    rh.ray.id[i] = static_cast<unsigned>(i);
+    rh.ray.flags[i] = 0;
+    rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+  }
+  rtcIntersect16(valid, top_, &context, &rh);
+  for (int i = 0; i < n; ++i) {
+    hits[i].found = rh.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID;
+    if (!hits[i].found) continue;
+    hits[i].hit = {rh.ray.tfar[i], rh.hit.u[i], rh.hit.v[i], rh.hit.geomID[i], rh.hit.primID[i], rh.hit.instID[0][i], rh.ray.time[i]};
+    if (normals) normals[i] = vec3(rh.hit.Ng_x[i], rh.hit.Ng_y[i], rh.hit.Ng_z[i]);
+  }
+}
+
 vec3 SceneGeometry::transmittance(const vec3& origin, const vec3& direction, float tmax, float time,
                                   ThinTransmittance thin, const void* user) const {
   ShadowQuery query;

@@ -30,6 +30,12 @@ struct HitRecord {
   float time = 0.0f;
 };
 
+// A ray's closest hit, if it has one.
+struct ClosestHit {
+  bool found = false;
+  HitRecord hit;  // when found
+};
+
 // Everything shading needs about a hit point, in world space.
 struct SurfaceHit {
   vec3 p;
@@ -72,6 +78,13 @@ class SceneGeometry {
   // With `geometric_normal`, also Embree's unnormalised geometric normal (in the hit
   // instance's own space: what a traversal-only pass needs, not shading).
   bool intersect(const Ray& ray, HitRecord& hit, vec3* geometric_normal = nullptr) const;
+  // The closest hits of n <= N rays traced together as one Embree packet (rtcIntersectN,
+  // coherent): found[i] and hits[i] (and normals[i] when given) as intersect() gives them.
+  // The closest hits of n <= kPacketSize rays traced together (rtcIntersect16, marked coherent:
+  // meant for the camera rays of one pixel). Each is what intersect() gives that ray, bit for
+  // bit, whichever rays share its packet (docs/performance.md, "Camera rays as packets").
+  static constexpr int kPacketSize = 16;
+  void intersect_packet(const Ray* rays, int n, ClosestHit* hits, vec3* normals = nullptr) const;
   // What reaches origin from origin + tmax direction at `time`: 0 behind an opaque surface,
   // else the product of what the surfaces between let through (1 - alpha of a BLEND
   // surface, the straight-through transmittance of a thin transmissive one, from `thin`).
