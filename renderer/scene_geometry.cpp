@@ -536,6 +536,14 @@ void SceneGeometry::intersect_packet(const Ray* rays, int n, ClosestHit* hits, v
   for (int i = 0; i < n; ++i) {
     hits[i].found = rh.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID;
     if (!hits[i].found) continue;
+    // On a triangle's edge the neighbour across it is hit at the same t, and of two equal hits
+    // Embree keeps the first it visits: the packet's traversal order may pick the other one.
+    // Such a ray is traced again alone, so that it gets the hit intersect() gives it.
+    const float u = rh.hit.u[i], v = rh.hit.v[i];
+    if (std::min(std::min(u, v), 1.0f - u - v) < kEdgeBand) {
+      hits[i].found = intersect(rays[i], hits[i].hit, normals ? &normals[i] : nullptr);
+      continue;
+    }
     hits[i].hit = {rh.ray.tfar[i], rh.hit.u[i], rh.hit.v[i], rh.hit.geomID[i], rh.hit.primID[i], rh.hit.instID[0][i], rh.ray.time[i]};
     if (normals) normals[i] = vec3(rh.hit.Ng_x[i], rh.hit.Ng_y[i], rh.hit.Ng_z[i]);
   }

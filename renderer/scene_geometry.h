@@ -82,8 +82,12 @@ class SceneGeometry {
   // coherent): found[i] and hits[i] (and normals[i] when given) as intersect() gives them.
   // The closest hits of n <= kPacketSize rays traced together (rtcIntersect16, marked coherent:
   // meant for the camera rays of one pixel). Each is what intersect() gives that ray, bit for
-  // bit, whichever rays share its packet (docs/performance.md, "Camera rays as packets").
+  // bit: Embree's packet kernels compute the same t, u, v and normal, and a hit within
+  // kEdgeBand (barycentric) of an edge, where a neighbour ties, is traced again alone. Only
+  // a tie between overlapping triangles away from their edges may still go either way, the
+  // same way for the same packet (docs/performance.md, "Camera rays as packets").
   static constexpr int kPacketSize = 16;
+  static constexpr float kEdgeBand = 1e-5f;
   void intersect_packet(const Ray* rays, int n, ClosestHit* hits, vec3* normals = nullptr) const;
   // What reaches origin from origin + tmax direction at `time`: 0 behind an opaque surface,
   // else the product of what the surfaces between let through (1 - alpha of a BLEND

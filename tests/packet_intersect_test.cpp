@@ -113,5 +113,33 @@ TEST(PacketIntersect, EveryHitIsTheSingleRaysWhateverSharesThePacket) {
   EXPECT_GT(hits, 1500);
 }
 
+// Rays aimed at the diagonals of a quad (the edge its two triangles share, where both are hit
+// at the same t): Embree's packet traversal may reach the other triangle first; the packet
+// still reports the hit the single ray gets.
+TEST(PacketIntersect, TiesOnASharedEdgeGoAsForTheSingleRay) {
+  SceneDescription d;
+  test::add_mesh(d, test::make_quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, test::add_material(d, test::diffuse(vec3(0.5f)))));
+  const RenderScene rs(std::move(d), {});
+  const SceneGeometry& g = *rs.geometry;
+  constexpr int N = SceneGeometry::kPacketSize;
+  std::mt19937 gen(5);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  for (int p = 0; p < 400; ++p) {
+    const vec3 eye(unit(gen), unit(gen), 3.0f + unit(gen));
+    Ray rays[N];
+    for (int k = 0; k < N; ++k) {
+      const float s = unit(gen);
+      rays[k] = Ray{eye, glm::normalize(vec3(s, k % 2 ? s : -s, 0.0f) - eye)};
+    }
+    ClosestHit found[N];
+    vec3 ng[N];
+    g.intersect_packet(rays, N, found, ng);
+    for (int k = 0; k < N; ++k) {
+      ASSERT_TRUE(found[k].found);
+      expect_same(g, rays[k], found[k], ng[k]);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace tessera
