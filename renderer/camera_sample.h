@@ -2,7 +2,8 @@
 // filter-sampled point, the lens and the time, the ray, the path. Consecutive samples of the
 // pixel go together: their camera rays are traced as one Embree packet (coherent rays: one
 // traversal serves them all), then each path goes on alone from its first hit. A sample's
-// result does not depend on the samples it goes with (SceneGeometry::intersect_packet).
+// first hit is the one a ray traced alone gets, but for ties between overlapping triangles
+// (SceneGeometry::intersect_packet), which go the same way for the same group.
 // render_frame takes every sample this way and trace_pixel (--pixel) takes a pixel's the same
 // way, in the same groups, so both see the same paths.
 #pragma once
