@@ -1,5 +1,7 @@
 #include "renderer/camera_sample.h"
 
+#include <optional>
+
 #include "renderer/render.h"
 
 namespace tessera {
@@ -20,22 +22,47 @@ CameraSampler::CameraSampler(const RenderScene& scene, const RenderCamera& camer
   inv_h_ = 1.0f / (window.cropped() ? window.full_height : settings.height);
 }
 
-CameraSampleResult CameraSampler::sample(int fx, int fy, int s, PathCounters& counters, PathRecord* record) const {
-  Sampler rng(settings_.sampler, fx, fy, s, settings_.seed);
+Ray CameraSampler::camera_ray(int fx, int fy, Sampler& rng) const {
   const vec2 at = filter_.sample(rng.next2());
   const vec2 lens = has_lens_ ? rng.next2() : vec2(0.5f);
   const float time = timed_ ? rng.next() : 0.0f;
-  const Ray ray = camera_.generate_ray({(fx + at.x) * inv_w_, (fy + at.y) * inv_h_}, lens, time);
-  CameraSampleResult r;
-  if (!is_finite(ray.origin) || !is_finite(ray.direction)) {  // a degenerate camera: Embree
-    ++counters.dropped;                                       // would abort on such a ray
-    r.valid = false;
-    return r;
+  return camera_.generate_ray({(fx + at.x) * inv_w_, (fy + at.y) * inv_h_}, lens, time);  // carries the time
+}
+
+// Of a first hit at `distance`: along the camera's view axis at the ray's time.
+float CameraSampler::depth(const Ray& ray, float distance) const {
+  const vec3 axis = camera_moves_ ? -vec3(camera_.camera_to_world_at(ray.time)[2]) : forward_;
+  return distance * glm::dot(ray.direction, axis);
+}
+
+void CameraSampler::sample(int fx, int fy, int s0, int n, PathCounters& counters, CameraSampleResult* out,
+                           PathRecord* const* records) const {
+  std::optional<Sampler> rng[kGroup];
+  Ray rays[kGroup];
+  int lane[kGroup];  // sample k's ray in the packet; -1: the camera made no finite ray
+  int lanes = 0;
+  for (int k = 0; k < n; ++k) {
+    rng[k].emplace(settings_.sampler, fx, fy, s0 + k, settings_.seed);
+    const Ray ray = camera_ray(fx, fy, *rng[k]);
+    out[k] = CameraSampleResult{};
+    lane[k] = is_finite(ray.origin) && is_finite(ray.direction) ? lanes : -1;  // Embree would abort
+    if (lane[k] < 0) {                                                        // on a non-finite ray
+      ++counters.dropped;
+      out[k].valid = false;
+      continue;
+    }
+    rays[lanes++] = ray;
   }
-  r.radiance = trace_path(scene_, params_, ray, rng, r.first, counters, record);
-  const vec3 axis = camera_moves_ ? -vec3(camera_.camera_to_world_at(time)[2]) : forward_;
-  r.depth = r.first.distance * glm::dot(ray.direction, axis);
-  return r;
+  ClosestHit hits[kGroup];
+  scene_.geometry->intersect_packet(rays, lanes, hits);
+  for (int k = 0; k < n; ++k) {
+    if (lane[k] < 0) continue;
+    const Ray& ray = rays[lane[k]];
+    CameraSampleResult& r = out[k];
+    r.radiance = trace_path_from(scene_, params_, ray, &hits[lane[k]], *rng[k], r.first, counters,
+                                 records ? records[k] : nullptr);
+    r.depth = depth(ray, r.first.distance);
+  }
 }
 
 }  // namespace tessera

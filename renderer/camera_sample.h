@@ -1,7 +1,14 @@
-// One camera sample of one pixel: the sampler for (pixel, sample, seed), the filter-sampled
-// point, the lens and the time, the ray, the path. render_frame takes every sample this way
-// and trace_pixel (--pixel) takes a pixel's the same way, so both see the same paths.
+// Camera samples of one pixel: for each, the sampler for (pixel, sample, seed), the
+// filter-sampled point, the lens and the time, the ray, the path. Consecutive samples of the
+// pixel go together: their camera rays are traced as one Embree packet (coherent rays: one
+// traversal serves them all), then each path goes on alone from its first hit. A sample's
+// first hit is the one a ray traced alone gets, but for ties between overlapping triangles
+// (SceneGeometry::intersect_packet), which go the same way for the same group.
+// render_frame takes every sample this way and trace_pixel (--pixel) takes a pixel's the same
+// way, in the same groups, so both see the same paths.
 #pragma once
+
+#include <algorithm>
 
 #include "renderer/camera.h"
 #include "renderer/integrator/path_tracer.h"
@@ -22,10 +29,30 @@ struct CameraSampleResult {
 class CameraSampler {
  public:
   CameraSampler(const RenderScene& scene, const RenderCamera& camera, const RenderSettings& settings);
-  // Sample `s` of pixel (fx, fy) of the frame (not of a crop: what the samples depend on).
-  CameraSampleResult sample(int fx, int fy, int s, PathCounters& counters, PathRecord* record = nullptr) const;
+  static constexpr int kGroup = SceneGeometry::kPacketSize;
+  // Samples s0 .. s0 + n - 1 (n <= kGroup) of pixel (fx, fy) of the frame (not of a crop: what
+  // the samples depend on) into out[0 .. n - 1]; records[k] (when given and not null) receives
+  // sample s0 + k's path.
+  void sample(int fx, int fy, int s0, int n, PathCounters& counters, CameraSampleResult* out,
+              PathRecord* const* records = nullptr) const;
+  // Samples begin .. end - 1 of the pixel in groups of kGroup from `begin`, as render_frame
+  // takes those a pixel needs in one sample wave: each(s, result) in sample order. records:
+  // as above, records[s - begin] for sample s.
+  template <typename Each>
+  void sample_span(int fx, int fy, int begin, int end, PathCounters& counters, Each&& each,
+                   PathRecord* const* records = nullptr) const {
+    CameraSampleResult r[kGroup];
+    for (int s = begin; s < end; s += kGroup) {
+      const int n = std::min(kGroup, end - s);
+      sample(fx, fy, s, n, counters, r, records ? records + (s - begin) : nullptr);
+      for (int k = 0; k < n; ++k) each(s + k, r[k]);
+    }
+  }
 
  private:
+  Ray camera_ray(int fx, int fy, Sampler& rng) const;
+  float depth(const Ray& ray, float distance) const;
+
   const RenderScene& scene_;
   const RenderCamera& camera_;
   const RenderSettings& settings_;

@@ -1,5 +1,7 @@
 #include "renderer/pixel_trace.h"
 
+#include <algorithm>
+
 #include "renderer/camera_sample.h"
 
 namespace tessera {
@@ -8,17 +10,19 @@ PixelTrace trace_pixel(const RenderScene& scene, const RenderCamera& camera, con
                        const PixelTraceParams& params) {
   const CameraSampler sampler(scene, camera, settings);
   PixelTrace trace;
+  const int recorded = std::clamp(params.recorded, 0, settings.spp);
+  trace.paths.resize(recorded);
+  trace.radiance.resize(recorded);
   PathCounters counters;
   glm::dvec3 sum(0.0);
-  for (int s = 0; s < settings.spp; ++s) {
-    PathRecord record;
-    const bool keep = s < params.recorded;
-    const CameraSampleResult r = sampler.sample(params.x, params.y, s, counters, keep ? &record : nullptr);
-    sum += glm::dvec3(r.radiance);  // an invalid sample is black, as on the film
-    if (keep) {
-      trace.paths.push_back(std::move(record));
-      trace.radiance.push_back(r.radiance);
-    }
+  // Wave by wave, so that the samples go in the groups render_frame traces them in.
+  for (const SampleWave& wave : sample_waves_of(settings)) {
+    std::vector<PathRecord*> records;
+    for (int s = wave.begin; s < wave.end; ++s) records.push_back(s < recorded ? &trace.paths[s] : nullptr);
+    sampler.sample_span(params.x, params.y, wave.begin, wave.end, counters, [&](int s, const CameraSampleResult& r) {
+      sum += glm::dvec3(r.radiance);  // an invalid sample is black, as on the film
+      if (s < recorded) trace.radiance[s] = r.radiance;
+    }, records.data());
   }
   trace.samples = settings.spp;
   trace.mean = sum / static_cast<double>(settings.spp);

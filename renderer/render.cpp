@@ -58,14 +58,10 @@ void render_tile(const CameraSampler& sampler, const RenderSettings& settings, c
       if (begin >= wave.end) continue;
       const int fx = x + window.x, fy = y + window.y;  // in the frame: what the samples depend on
       PixelSums sums;
-      for (int s = begin; s < wave.end; ++s) {
-        const CameraSampleResult r = sampler.sample(fx, fy, s, counters.path);
-        if (!r.valid) {
-          ++sums.samples;
-          continue;
-        }
-        add_sample(sums, s, glm::dvec3(r.radiance), r.first, r.depth);
-      }
+      sampler.sample_span(fx, fy, begin, wave.end, counters.path, [&](int s, const CameraSampleResult& r) {
+        if (r.valid) add_sample(sums, s, glm::dvec3(r.radiance), r.first, r.depth);
+        else ++sums.samples;
+      });
       film.add(x, y, sums);
       counters.samples += wave.end - begin;
     }

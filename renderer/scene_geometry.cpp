@@ -513,6 +513,52 @@ bool SceneGeometry::intersect(const Ray& ray, HitRecord& hit, vec3* geometric_no
   return true;
 }
 
+void SceneGeometry::intersect_packet(const Ray* rays, int n, ClosestHit* hits, vec3* normals) const {
+  if (n < kMinPacket) {  // the same hits, without a mostly idle packet's cost
+    for (int i = 0; i < n; ++i) hits[i].found = intersect(rays[i], hits[i].hit, normals ? &normals[i] : nullptr);
+    return;
+  }
+  constexpr int N = kPacketSize;
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  alignas(64) int valid[N];
+  alignas(64) RTCRayHit16 rh;
+  for (int i = 0; i < N; ++i) {
+    valid[i] = i < n ? -1 : 0;
+    const Ray& ray = rays[i < n ? i : 0];  // idle lanes hold a copy, which Embree ignores
+    rh.ray.org_x[i] = ray.origin.x;
+    rh.ray.org_y[i] = ray.origin.y;
+    rh.ray.org_z[i] = ray.origin.z;
+    rh.ray.dir_x[i] = ray.direction.x;
+    rh.ray.dir_y[i] = ray.direction.y;
+    rh.ray.dir_z[i] = ray.direction.z;
+    rh.ray.tnear[i] = ray.tmin;
+    rh.ray.tfar[i] = ray.tmax;
+    rh.ray.time[i] = ray.time;
+    rh.ray.mask[i] = 0xffffffffu;
+    rh.ray.id[i] = static_cast<unsigned>(i);
+    rh.ray.flags[i] = 0;
+    rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+  }
+  rtcIntersect16(valid, top_, &context, &rh);
+  for (int i = 0; i < n; ++i) {
+    hits[i].found = rh.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID;
+    if (!hits[i].found) continue;
+    // On a triangle's edge the neighbour across it is hit at the same t, and of two equal hits
+    // Embree keeps the first it visits: the packet's traversal order may pick the other one.
+    // Such a ray is traced again alone, so that it gets the hit intersect() gives it.
+    const float u = rh.hit.u[i], v = rh.hit.v[i];
+    if (std::min(std::min(u, v), 1.0f - u - v) < kEdgeBand) {
+      hits[i].found = intersect(rays[i], hits[i].hit, normals ? &normals[i] : nullptr);
+      continue;
+    }
+    hits[i].hit = {rh.ray.tfar[i], rh.hit.u[i], rh.hit.v[i], rh.hit.geomID[i], rh.hit.primID[i], rh.hit.instID[0][i], rh.ray.time[i]};
+    if (normals) normals[i] = vec3(rh.hit.Ng_x[i], rh.hit.Ng_y[i], rh.hit.Ng_z[i]);
+  }
+}
+
 vec3 SceneGeometry::transmittance(const vec3& origin, const vec3& direction, float tmax, float time,
                                   ThinTransmittance thin, const void* user) const {
   ShadowQuery query;

@@ -30,6 +30,12 @@ struct HitRecord {
   float time = 0.0f;
 };
 
+// A ray's closest hit, if it has one.
+struct ClosestHit {
+  bool found = false;
+  HitRecord hit;  // when found
+};
+
 // Everything shading needs about a hit point, in world space.
 struct SurfaceHit {
   vec3 p;
@@ -72,6 +78,19 @@ class SceneGeometry {
   // With `geometric_normal`, also Embree's unnormalised geometric normal (in the hit
   // instance's own space: what a traversal-only pass needs, not shading).
   bool intersect(const Ray& ray, HitRecord& hit, vec3* geometric_normal = nullptr) const;
+  // The closest hits of n <= N rays traced together as one Embree packet (rtcIntersectN,
+  // coherent): found[i] and hits[i] (and normals[i] when given) as intersect() gives them.
+  // The closest hits of n <= kPacketSize rays traced together (rtcIntersect16, marked coherent:
+  // meant for the camera rays of one pixel). Each is what intersect() gives that ray, bit for
+  // bit: Embree's packet kernels compute the same t, u, v and normal, and a hit within
+  // kEdgeBand (barycentric) of an edge, where a neighbour ties, is traced again alone. Only
+  // a tie between overlapping triangles away from their edges may still go either way, the
+  // same way for the same packet (docs/performance.md, "Camera rays as packets").
+  // Fewer than kMinPacket rays are traced one by one: a packet of 16 with 4 lanes busy took
+  // 1.3-1.5 times as long as 4 single rays, with 8 busy 0.7-1.1 times (docs/performance.md).
+  static constexpr int kPacketSize = 16, kMinPacket = 8;
+  static constexpr float kEdgeBand = 1e-5f;
+  void intersect_packet(const Ray* rays, int n, ClosestHit* hits, vec3* normals = nullptr) const;
   // What reaches origin from origin + tmax direction at `time`: 0 behind an opaque surface,
   // else the product of what the surfaces between let through (1 - alpha of a BLEND
   // surface, the straight-through transmittance of a thin transmissive one, from `thin`).

@@ -151,6 +151,11 @@ bool features_look_through(const ShadingPoint& sp) {
 
 vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ray,
                 Sampler& rng, FirstHit& first, PathCounters& counters, PathRecord* record) {
+  return trace_path_from(scene, params, ray, nullptr, rng, first, counters, record);
+}
+
+vec3 trace_path_from(const RenderScene& scene, const PathTracerParams& params, Ray ray, const ClosestHit* known,
+                     Sampler& rng, FirstHit& first, PathCounters& counters, PathRecord* record) {
   vec3 radiance(0.0f), throughput(1.0f);
   vec3 absorption(0.0f);  // of the volume the ray travels in (Beer-Lambert); 0 = none
   float bsdf_pdf = 0.0f;  // solid-angle pdf of the direction that led here; 0 = camera ray
@@ -184,7 +189,8 @@ vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ra
   };
   for (;;) {
     ++counters.rays;
-    const bool found = scene.geometry->intersect(ray, hit);
+    const bool found = known ? (hit = known->hit, known->found) : scene.geometry->intersect(ray, hit);
+    known = nullptr;  // the first ray's only
     if (absorption != vec3(0.0f)) throughput *= found ? glm::exp(-absorption * hit.t) : vec3(0.0f);
     if (!found) {
       const float weight = bsdf_pdf > 0.0f && environment_sampling

@@ -61,5 +61,9 @@ struct PathRecord {
 // (null when rendering) receives the path's vertices; the radiance is the same either way.
 vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ray,
                 Sampler& rng, FirstHit& first, PathCounters& counters, PathRecord* record = nullptr);
+// The same path when the ray's closest hit is already known (`known`, as
+// SceneGeometry::intersect gives it: camera rays traced as a packet); null: not known.
+vec3 trace_path_from(const RenderScene& scene, const PathTracerParams& params, Ray ray, const ClosestHit* known,
+                     Sampler& rng, FirstHit& first, PathCounters& counters, PathRecord* record = nullptr);
 
 }  // namespace tessera
