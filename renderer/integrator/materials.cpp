@@ -134,20 +134,20 @@ ShadingPoint MaterialTable::evaluate(const SurfaceHit& hit) const {
   // The same values as evaluate(m, hit) gives: what differs from the white, tangentless hit.
   const Material& m = materials_[hit.material];
   ShadingPoint sp = constant_point_[hit.material];
-  if (hit.color != vec4(1.0f)) {
-    const vec4 base = m.base_color_factor * vec4(1.0f) * hit.color;
-    sp.base_color = glm::clamp(vec3(base), 0.0f, 1.0f);
-    sp.alpha = glm::clamp(base.a, 0.0f, 1.0f);
-  }
+  if (hit.color != vec4(1.0f)) set_base_color(m, hit, sp);
   if (!m.unlit && m.anisotropy_strength > 0.0f) sp.anisotropy_direction = anisotropy_direction(m, hit, sp.anisotropy);
   return sp;
 }
 
-ShadingPoint MaterialTable::evaluate(const Material& m, const SurfaceHit& hit) const {
-  ShadingPoint sp;
+void MaterialTable::set_base_color(const Material& m, const SurfaceHit& hit, ShadingPoint& sp) const {
   const vec4 base = m.base_color_factor * lookup(m.base_color_texture, srgb_, hit) * hit.color;
   sp.base_color = glm::clamp(vec3(base), 0.0f, 1.0f);
   sp.alpha = glm::clamp(base.a, 0.0f, 1.0f);
+}
+
+ShadingPoint MaterialTable::evaluate(const Material& m, const SurfaceHit& hit) const {
+  ShadingPoint sp;
+  set_base_color(m, hit, sp);
   sp.emission = emission(m, hit);
   sp.double_sided = m.double_sided;
   sp.unlit = m.unlit;

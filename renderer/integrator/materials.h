@@ -57,6 +57,7 @@ class MaterialTable {
   vec3 anisotropy_direction(const Material& m, const SurfaceHit& hit, float& strength) const;
 
   ShadingPoint evaluate(const Material& m, const SurfaceHit& hit) const;
+  void set_base_color(const Material& m, const SurfaceHit& hit, ShadingPoint& sp) const;  // and alpha
 
   std::vector<Material> materials_;
   Material default_material_;  // the glTF default: white, metallic 1, roughness 1
