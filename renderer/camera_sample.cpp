@@ -41,8 +41,9 @@ void CameraSampler::sample(int fx, int fy, int s0, int n, PathCounters& counters
   Ray rays[kGroup];
   int lane[kGroup];  // sample k's ray in the packet; -1: the camera made no finite ray
   int lanes = 0;
+  const std::uint64_t pixel_key = Sampler::pixel_key(settings_.sampler, fx, fy, settings_.seed);
   for (int k = 0; k < n; ++k) {
-    rng[k].emplace(settings_.sampler, fx, fy, s0 + k, settings_.seed);
+    rng[k].emplace(settings_.sampler, pixel_key, s0 + k);
     const Ray ray = camera_ray(fx, fy, *rng[k]);
     out[k] = CameraSampleResult{};
     lane[k] = is_finite(ray.origin) && is_finite(ray.direction) ? lanes : -1;  // Embree would abort
@@ -59,8 +60,10 @@ void CameraSampler::sample(int fx, int fy, int s0, int n, PathCounters& counters
     if (lane[k] < 0) continue;
     const Ray& ray = rays[lane[k]];
     CameraSampleResult& r = out[k];
-    r.radiance = trace_path_from(scene_, params_, ray, &hits[lane[k]], *rng[k], r.first, counters,
-                                 records ? records[k] : nullptr);
+    PathRecord* record = records ? records[k] : nullptr;
+    r.radiance = hits[lane[k]].found || record
+                     ? trace_path_from(scene_, params_, ray, &hits[lane[k]], *rng[k], r.first, counters, record)
+                     : camera_ray_escaped(scene_, params_, ray, counters);
     r.depth = depth(ray, r.first.distance);
   }
 }

@@ -42,10 +42,13 @@ inline std::uint64_t mix64(std::uint64_t z) {
 class Sampler {
  public:
   Sampler(SamplerKind kind, std::uint32_t px, std::uint32_t py, std::uint32_t sample, std::uint32_t seed)
-      : pixel_key_(mix64(mix64((std::uint64_t(seed) << 32) | kind_tag(kind)) ^ ((std::uint64_t(py) << 32) | px))),
-        sample_(sample),
-        reversed_sample_(reverse_bits(sample)),
-        kind_(kind) {}
+      : Sampler(kind, pixel_key(kind, px, py, seed), sample) {}
+  // What every sample of pixel (px, py) shares: a pixel's samples made together hash it once.
+  static std::uint64_t pixel_key(SamplerKind kind, std::uint32_t px, std::uint32_t py, std::uint32_t seed) {
+    return mix64(mix64((std::uint64_t(seed) << 32) | kind_tag(kind)) ^ ((std::uint64_t(py) << 32) | px));
+  }
+  Sampler(SamplerKind kind, std::uint64_t pixel_key, std::uint32_t sample)
+      : pixel_key_(pixel_key), sample_(sample), reversed_sample_(reverse_bits(sample)), kind_(kind) {}
 
   float next() { return draw(1)[0]; }
   vec2 next2() {

@@ -147,6 +147,20 @@ bool features_look_through(const ShadingPoint& sp) {
   return smooth >= 0.75f;
 }
 
+// A sample's radiance as the film takes it: a non-finite one dropped (counted), the
+// luminance clamped when asked.
+vec3 finished_sample(vec3 radiance, const PathTracerParams& params, PathCounters& counters) {
+  if (!is_finite(radiance)) {
+    ++counters.dropped;
+    return vec3(0.0f);
+  }
+  if (params.clamp > 0.0f) {
+    const float l = luminance(radiance);
+    if (l > params.clamp) radiance *= params.clamp / l;
+  }
+  return radiance;
+}
+
 }  // namespace
 
 vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ray,
@@ -300,15 +314,16 @@ vec3 trace_path_from(const RenderScene& scene, const PathTracerParams& params, R
     }
     ray = Ray{ctx.origin_towards(wi), wi, 0.0f, std::numeric_limits<float>::infinity(), time};
   }
-  if (!is_finite(radiance)) {
-    ++counters.dropped;
-    return vec3(0.0f);
-  }
-  if (params.clamp > 0.0f) {
-    const float l = luminance(radiance);
-    if (l > params.clamp) radiance *= params.clamp / l;
-  }
-  return radiance;
+  return finished_sample(radiance, params, counters);
+}
+
+vec3 camera_ray_escaped(const RenderScene& scene, const PathTracerParams& params, const Ray& ray,
+                        PathCounters& counters) {
+  ++counters.rays;
+  vec3 radiance(0.0f);
+  // trace_path_from's expression for the background, weight 1, throughput 1: the same bits.
+  if (!params.transparent_background) radiance += vec3(1.0f) * scene.environment.radiance(ray.direction) * 1.0f;
+  return finished_sample(radiance, params, counters);
 }
 
 }  // namespace tessera
