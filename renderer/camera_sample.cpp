@@ -22,11 +22,13 @@ CameraSampler::CameraSampler(const RenderScene& scene, const RenderCamera& camer
   inv_h_ = 1.0f / (window.cropped() ? window.full_height : settings.height);
 }
 
-Ray CameraSampler::camera_ray(int fx, int fy, Sampler& rng) const {
+// The sample's point on the film (the filter's draw), lens position and time, drawn in that
+// order; the ray is made from them by RenderCamera::generate_rays, for the group at once.
+void CameraSampler::draw_camera_sample(int fx, int fy, Sampler& rng, vec2& film, vec2& lens, float& time) const {
   const vec2 at = filter_.sample(rng.next2());
-  const vec2 lens = has_lens_ ? rng.next2() : vec2(0.5f);
-  const float time = timed_ ? rng.next() : 0.0f;
-  return camera_.generate_ray({(fx + at.x) * inv_w_, (fy + at.y) * inv_h_}, lens, time);  // carries the time
+  lens = has_lens_ ? rng.next2() : vec2(0.5f);
+  time = timed_ ? rng.next() : 0.0f;
+  film = {(fx + at.x) * inv_w_, (fy + at.y) * inv_h_};
 }
 
 // Of a first hit at `distance`: along the camera's view axis at the ray's time.
@@ -42,9 +44,16 @@ void CameraSampler::sample(int fx, int fy, int s0, int n, PathCounters& counters
   int lane[kGroup];  // sample k's ray in the packet; -1: the camera made no finite ray
   int lanes = 0;
   const std::uint64_t pixel_key = Sampler::pixel_key(settings_.sampler, fx, fy, settings_.seed);
+  vec2 film[kGroup], lens[kGroup];
+  float time[kGroup];
   for (int k = 0; k < n; ++k) {
     rng[k].emplace(settings_.sampler, pixel_key, s0 + k);
-    const Ray ray = camera_ray(fx, fy, *rng[k]);
+    draw_camera_sample(fx, fy, *rng[k], film[k], lens[k], time[k]);
+  }
+  Ray camera_rays[kGroup];
+  camera_.generate_rays(film, lens, time, n, camera_rays);
+  for (int k = 0; k < n; ++k) {
+    const Ray& ray = camera_rays[k];
     out[k] = CameraSampleResult{};
     lane[k] = is_finite(ray.origin) && is_finite(ray.direction) ? lanes : -1;  // Embree would abort
     if (lane[k] < 0) {                                                        // on a non-finite ray

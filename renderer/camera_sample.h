@@ -50,7 +50,7 @@ class CameraSampler {
   }
 
  private:
-  Ray camera_ray(int fx, int fy, Sampler& rng) const;
+  void draw_camera_sample(int fx, int fy, Sampler& rng, vec2& film, vec2& lens, float& time) const;
   float depth(const Ray& ray, float distance) const;
 
   const RenderScene& scene_;
