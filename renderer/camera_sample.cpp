@@ -22,10 +22,11 @@ CameraSampler::CameraSampler(const RenderScene& scene, const RenderCamera& camer
   inv_h_ = 1.0f / (window.cropped() ? window.full_height : settings.height);
 }
 
-// The sample's point on the film (the filter's draw), lens position and time, drawn in that
-// order; the ray is made from them by RenderCamera::generate_rays, for the group at once.
-void CameraSampler::draw_camera_sample(int fx, int fy, Sampler& rng, vec2& film, vec2& lens, float& time) const {
-  const vec2 at = filter_.sample(rng.next2());
+// The sample's point on the film (from the filter's draw `u`, the sampler's first), lens
+// position and time, drawn in that order; RenderCamera::generate_rays makes the group's rays.
+void CameraSampler::camera_sample_point(int fx, int fy, const vec2& u, Sampler& rng, vec2& film, vec2& lens,
+                                        float& time) const {
+  const vec2 at = filter_.sample(u);
   lens = has_lens_ ? rng.next2() : vec2(0.5f);
   time = timed_ ? rng.next() : 0.0f;
   film = {(fx + at.x) * inv_w_, (fy + at.y) * inv_h_};
@@ -44,12 +45,12 @@ void CameraSampler::sample(int fx, int fy, int s0, int n, PathCounters& counters
   int lane[kGroup];  // sample k's ray in the packet; -1: the camera made no finite ray
   int lanes = 0;
   const std::uint64_t pixel_key = Sampler::pixel_key(settings_.sampler, fx, fy, settings_.seed);
-  vec2 film[kGroup], lens[kGroup];
+  Sampler* samplers[kGroup];
+  for (int k = 0; k < n; ++k) samplers[k] = &rng[k].emplace(settings_.sampler, pixel_key, s0 + k);
+  vec2 u[kGroup], film[kGroup], lens[kGroup];
   float time[kGroup];
-  for (int k = 0; k < n; ++k) {
-    rng[k].emplace(settings_.sampler, pixel_key, s0 + k);
-    draw_camera_sample(fx, fy, *rng[k], film[k], lens[k], time[k]);
-  }
+  Sampler::next2_of_pixel(samplers, n, u);
+  for (int k = 0; k < n; ++k) camera_sample_point(fx, fy, u[k], *samplers[k], film[k], lens[k], time[k]);
   Ray camera_rays[kGroup];
   camera_.generate_rays(film, lens, time, n, camera_rays);
   for (int k = 0; k < n; ++k) {

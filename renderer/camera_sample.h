@@ -30,6 +30,7 @@ class CameraSampler {
  public:
   CameraSampler(const RenderScene& scene, const RenderCamera& camera, const RenderSettings& settings);
   static constexpr int kGroup = SceneGeometry::kPacketSize;
+  static_assert(kGroup <= Sampler::kTogether);
   // Samples s0 .. s0 + n - 1 (n <= kGroup) of pixel (fx, fy) of the frame (not of a crop: what
   // the samples depend on) into out[0 .. n - 1]; records[k] (when given and not null) receives
   // sample s0 + k's path.
@@ -50,7 +51,7 @@ class CameraSampler {
   }
 
  private:
-  void draw_camera_sample(int fx, int fy, Sampler& rng, vec2& film, vec2& lens, float& time) const;
+  void camera_sample_point(int fx, int fy, const vec2& u, Sampler& rng, vec2& film, vec2& lens, float& time) const;
   float depth(const Ray& ray, float distance) const;
 
   const RenderScene& scene_;

@@ -55,6 +55,26 @@ class Sampler {
     const auto v = draw(2);
     return {v[0], v[1]};
   }
+  // next2() of the samplers of one pixel at the same draw (a pixel's camera samples: the
+  // first draw), for n <= kTogether of them: what each would return alone, bit for bit. The
+  // pixel's hashes are made once, and each step for all the samples before the next, so that
+  // the samples' chains of dependent multiplies and lookups overlap.
+  static constexpr int kTogether = 16;
+  static void next2_of_pixel(Sampler* const* samplers, int n, vec2* out) {
+    if (n <= 0) return;
+    const Sampler& first = *samplers[0];
+    if (first.kind_ == SamplerKind::independent) {
+      for (int k = 0; k < n; ++k) out[k] = samplers[k]->next2();
+      return;
+    }
+    for (int k = 0; k < n; ++k) ++samplers[k]->draws_;  // all at first's draw: one pixel, one draw
+    const std::uint64_t key = first.draw_key();
+    const std::uint64_t more = mix64(key ^ kMoreSeeds);
+    std::uint32_t index[kTogether];
+    for (int k = 0; k < n; ++k) index[k] = laine_karras(samplers[k]->reversed_sample_, static_cast<std::uint32_t>(key));
+    for (int k = 0; k < n; ++k) out[k].x = scrambled_sobol_float(index[k], 0, static_cast<std::uint32_t>(key >> 32));
+    for (int k = 0; k < n; ++k) out[k].y = scrambled_sobol_float(index[k], 1, static_cast<std::uint32_t>(more));
+  }
   // A 2D point (x, y) and a choice z drawn together.
   vec3 next3() {
     const auto v = draw(3);
@@ -64,8 +84,13 @@ class Sampler {
  private:
   static std::uint64_t kind_tag(SamplerKind kind) { return kind == SamplerKind::sobol ? 0x50b01 : 0; }
 
+  static constexpr std::uint64_t kMoreSeeds = 0x2545f4914f6cdd1dULL;
+  // The hash of (pixel, draw): the draw's scramble seeds, shared by the pixel's samples.
+  std::uint64_t draw_key() const { return mix64(pixel_key_ + 0x9e3779b97f4a7c15ULL * draws_); }
+
   std::array<float, 3> draw(int n) {
-    const std::uint64_t key = mix64(pixel_key_ + 0x9e3779b97f4a7c15ULL * ++draws_);
+    ++draws_;
+    const std::uint64_t key = draw_key();
     std::array<float, 3> v{};
     if (kind_ == SamplerKind::independent) {
       for (int d = 0; d < n; ++d) {
@@ -77,7 +102,7 @@ class Sampler {
     // The shuffled index stays bit-reversed: scrambled_sobol_float takes it so. The scrambles'
     // seeds are the key's two halves and, for a second and third number, one more hash of it.
     const std::uint32_t index = laine_karras(reversed_sample_, static_cast<std::uint32_t>(key));
-    const std::uint64_t more = n > 1 ? mix64(key ^ 0x2545f4914f6cdd1dULL) : 0;
+    const std::uint64_t more = n > 1 ? mix64(key ^ kMoreSeeds) : 0;
     const std::uint32_t seeds[3] = {static_cast<std::uint32_t>(key >> 32), static_cast<std::uint32_t>(more),
                                     static_cast<std::uint32_t>(more >> 32)};
     for (int d = 0; d < n; ++d) v[d] = scrambled_sobol_float(index, d, seeds[d]);

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <vector>
 
 #include "renderer/sampler.h"
@@ -25,6 +26,29 @@ TEST(Sampler, IsAPureFunctionOfItsKey) {
     EXPECT_NE(first(3, 5, 7, 11), first(3, 5, 7, 12));
   }
   EXPECT_NE(Sampler(SamplerKind::sobol, 3, 5, 7, 11).next2(), Sampler(SamplerKind::independent, 3, 5, 7, 11).next2());
+}
+
+// The camera samples of a pixel draw their first 2D point together (next2_of_pixel): each
+// gets what its own next2() gives, bit for bit, and its later draws are unchanged.
+TEST(Sampler, APixelsSamplesDrawTogetherAsAlone) {
+  for (SamplerKind kind : {SamplerKind::sobol, SamplerKind::independent})
+    for (int n = 1; n <= Sampler::kTogether; ++n) {
+      const std::uint64_t key = Sampler::pixel_key(kind, 17, 4, 9);
+      std::vector<Sampler> together, alone;
+      for (int k = 0; k < n; ++k) {
+        together.emplace_back(kind, key, 40 + k);
+        alone.emplace_back(kind, 17, 4, 40 + k, 9);
+      }
+      std::vector<Sampler*> group;
+      for (Sampler& s : together) group.push_back(&s);
+      std::vector<vec2> u(n);
+      Sampler::next2_of_pixel(group.data(), n, u.data());
+      for (int k = 0; k < n; ++k) {
+        const vec2 v = alone[k].next2();
+        EXPECT_EQ(std::memcmp(&u[k], &v, sizeof v), 0) << "n " << n << ", sample " << k;
+        for (int d = 0; d < 5; ++d) EXPECT_EQ(together[k].next3(), alone[k].next3()) << "draw " << d + 2;
+      }
+    }
 }
 
 TEST(Sampler, NamesRoundTrip) {
