@@ -28,7 +28,7 @@ DenoiseResult run(const DenoiseInput& in, const DenoiseParams& p) {
     for (auto& half : filtered.filtered)
       for (Planes& candidate : half) remodulate(candidate, factor);
   }
-  const Selection selection = select_and_combine(halves, filtered, p.selection_radius, p.selection_blend_radius);
+  const Selection selection = select_and_combine(halves, filtered, unfiltered_colour(in), p.selection_radius, p.selection_blend_radius);
 
   const std::size_t n = selection.rgb.pixels();
   DenoiseResult out;

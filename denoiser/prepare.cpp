@@ -167,6 +167,28 @@ Halves prepare_halves(const DenoiseInput& in, const DenoiseParams& p) {
   return out;
 }
 
+Unfiltered unfiltered_colour(const DenoiseInput& in) {
+  const std::size_t n = static_cast<std::size_t>(in.width) * in.height;
+  std::vector<float> count[2];
+  sample_counts(in, count[0], count[1]);
+  const std::vector<float>* src[2] = {&in.color_even, &in.color_odd};
+  Unfiltered out{Planes(in.width, in.height, 3), std::vector<float>(n)};
+  for (std::size_t i = 0; i < n; ++i) {
+    float total = 0.0f;
+    for (int h = 0; h < 2; ++h) {
+      if (!(count[h][i] > 0.0f) || !finite3(*src[h], i)) continue;
+      total += count[h][i];
+      for (int c = 0; c < 3; ++c) out.rgb.at(c, i) += count[h][i] * (*src[h])[3 * i + c];
+    }
+    bool finite = total > 0.0f;
+    for (int c = 0; c < 3; ++c) finite = finite && std::isfinite(out.rgb.at(c, i) /= total);
+    out.present[i] = finite ? 1.0f : 0.0f;  // a sum that overflowed is missing too
+    if (!finite)
+      for (int c = 0; c < 3; ++c) out.rgb.at(c, i) = 0.0f;
+  }
+  return out;
+}
+
 Features prepare_features(const DenoiseInput& in, const DenoiseParams& p, const Halves& halves) {
   const int w = in.width, h = in.height;
   const Planes albedo = to_planes(in.albedo, w, h, 3), normal = to_planes(in.normal, w, h, 3);
