@@ -16,9 +16,9 @@
 // Cycles' denoiser): a pixel brighter than twice the 75th percentile of its 5x5 neighbourhood
 // that the other half does not confirm is scaled down to that reference for the weights and
 // is data for no window. This is a bias: the energy of a removed firefly is not in the denoised
-// colour (the caller's noisy beauty keeps it), unless the
-// selection keeps the noisy colour there (denoiser/selection.cpp, offered()). Each window's fit is bounded by the range of the
-// colours it was fitted to, so no window extrapolates.
+// colour (the caller's noisy beauty keeps it) unless the selection keeps the noisy colour there
+// (denoiser/selection.cpp, offered()). Each window's fit is bounded by the range of the colours
+// it was fitted to, so no window extrapolates.
 //
 // A plain image-processing library: Eigen, TBB and the standard library only.
 #pragma once
