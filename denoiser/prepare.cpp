@@ -120,6 +120,9 @@ void validate(const DenoiseInput& in, const DenoiseParams& p) {
     throw std::invalid_argument("denoise: the feature half buffers must be given all four or none");
   if (p.radius < 1 || p.radius > 32) throw std::invalid_argument("denoise: radius must be in [1, 32]");
   if (p.stride < 1 || p.stride > p.radius + 1) throw std::invalid_argument("denoise: stride must be in [1, radius + 1]");
+  if (p.wide_radius < 0 || p.wide_radius > 32) throw std::invalid_argument("denoise: wide_radius must be in [0, 32]");
+  if (p.wide_radius > 0 && (p.wide_stride < 1 || p.wide_stride > p.wide_radius + 1))
+    throw std::invalid_argument("denoise: wide_stride must be in [1, wide_radius + 1]");
   if (p.feature_radius < 0 || p.feature_radius > 16) throw std::invalid_argument("denoise: feature_radius must be in [0, 16]");
   if (p.variance_radius < 0 || p.selection_radius < 0 || p.selection_blend_radius < 0) throw std::invalid_argument("denoise: radii must be >= 0");
   for (float k : p.bandwidths)

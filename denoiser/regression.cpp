@@ -49,6 +49,7 @@ struct Context {
   const Halves& halves;
   const Planes& features;
   const DenoiseParams& p;
+  int radius;
   float k2[2];
   Accumulator& acc;
 };
@@ -57,7 +58,7 @@ struct Context {
 // Depth is scaled by 2% of the centre's depth: a relative change, comparable to the others.
 int fill_design(const Context& ctx, int cx, int cy, Scratch& s) {
   const Planes& f = ctx.features;
-  const int w = f.width, h = f.height, r = ctx.p.radius;
+  const int w = f.width, h = f.height, r = ctx.radius;
   const bool has_depth = f.channels > 6;
   const std::size_t c = static_cast<std::size_t>(cy) * w + cx;
   const float zc = has_depth ? f.at(6, c) : 0.0f, zscale = 1.0f / (0.02f * std::abs(zc) + 1e-6f);
@@ -83,7 +84,7 @@ int fill_design(const Context& ctx, int cx, int cy, Scratch& s) {
 // Row by row along contiguous memory, branch-free: the compiler vectorises it.
 void fill_weights(const Context& ctx, int cx, int cy, Scratch& s) {
   const Planes& f = ctx.features;
-  const int w = f.width, h = f.height, r = ctx.p.radius;
+  const int w = f.width, h = f.height, r = ctx.radius;
   const std::size_t plane = f.pixels(), c = static_cast<std::size_t>(cy) * w + cx;
   const int x0 = std::max(0, cx - r), x1 = std::min(w - 1, cx + r), len = x1 - x0 + 1;
   const float inv_k2[2] = {1.0f / (3.0f * ctx.k2[0]), 1.0f / (3.0f * ctx.k2[1])};  // with the channel mean
@@ -214,14 +215,14 @@ Planes normalise(const Accumulator& acc, int v, const Half& half) {
 
 }  // namespace
 
-Filtered regress(const Halves& halves, const Planes& features, const DenoiseParams& p) {
+Filtered regress(const Halves& halves, const Planes& features, int radius, int stride, const DenoiseParams& p) {
   const int w = features.width, h = features.height;
   Accumulator acc;
   for (int v = 0; v < V; ++v) acc.sum[v] = Planes(w, h, 3), acc.weight[v] = Planes(w, h, 1);
-  const Context ctx{halves, features, p, {p.bandwidths[0] * p.bandwidths[0], p.bandwidths[1] * p.bandwidths[1]}, acc};
-  const std::vector<int> xs = centres(w, p.stride), ys = centres(h, p.stride);
-  const int phases = phase_count(ys, p.radius);
-  const int window = (2 * p.radius + 1) * (2 * p.radius + 1);
+  const Context ctx{halves, features, p, radius, {p.bandwidths[0] * p.bandwidths[0], p.bandwidths[1] * p.bandwidths[1]}, acc};
+  const std::vector<int> xs = centres(w, stride), ys = centres(h, stride);
+  const int phases = phase_count(ys, radius);
+  const int window = (2 * radius + 1) * (2 * radius + 1);
   // Phase by phase, rows of one phase in parallel: each pixel receives its windows' fits in
   // the same order (phase, then row, then column) whatever the thread count.
   for (int phase = 0; phase < phases; ++phase) {

@@ -2,6 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 namespace tessera::denoiser {
 
@@ -12,6 +16,28 @@ constexpr float kRelativeEpsilon = 1e-2f;  // relMSE's: (x - ref)^2 / (ref^2 + 0
 // it caps a filter's weight at 100x the unfiltered colour's. 0.05 to 0.2 measured alike.
 constexpr float kErrorFloor = 0.1f;
 constexpr float kTinyError = 1e-10f;  // the unfiltered error where the colour is noise-free
+// The per-pixel variance of a half from the two halves, (A - B)^2 / (1/nA + 1/nB), assumes
+// independent halves; the default sampler's even and odd samples are stratified together and
+// anticorrelated, so it reads high: against the 4096 spp references of docs/performance.md,
+// 1.27-1.30x each half's true error at 16 spp on all three scenes. Dividing it by 1.15 (1.1
+// to 1.28 measured: higher favours DamagedHelmet and the grid, lower the Cornell box) keeps
+// the estimate from undervaluing the noisy colour (its error) and overvaluing the filters
+// (theirs subtracts it). With independent halves (--sampler independent) it makes the noisy
+// colour's error read 13% low.
+constexpr float kHalfVarianceBias = 1.15f;
+// The filters' weights are divided by their number over 2: two candidates per pass, so one
+// pass weighs as before and a second does not crowd out the noisy colour by number alone
+// (DamagedHelmet 2.10e-3 without, 1.73e-3 with, both passes and the bias above).
+constexpr float kFilterShare = 2.0f;
+
+// fn(i) for every pixel, in parallel (each pixel's result is its own: any thread count gives
+// the same bits).
+template <typename Fn>
+void each_pixel(std::size_t n, const Fn& fn) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i < r.end(); ++i) fn(i);
+  });
+}
 
 // The weight of half A in a combination: each half weighs as its samples; a half without
 // samples here still carries its neighbours' fit, so equal weights when neither has any.
@@ -21,39 +47,55 @@ float weight_a(const Halves& halves, std::size_t i) {
 }
 
 // A filtered candidate's colour, halves combined.
-Planes combined(const Halves& halves, const Filtered& f, int cand) {
-  Planes out(f.filtered[0][cand].width, f.filtered[0][cand].height, 3);
-  for (std::size_t i = 0; i < out.pixels(); ++i) {
+Planes combined(const Halves& halves, const Planes (&half)[2]) {
+  Planes out(half[0].width, half[0].height, 3);
+  each_pixel(out.pixels(), [&](std::size_t i) {
     const float wa = weight_a(halves, i);
-    for (int k = 0; k < 3; ++k)
-      out.at(k, i) = wa * f.filtered[0][cand].at(k, i) + (1.0f - wa) * f.filtered[1][cand].at(k, i);
-  }
+    for (int k = 0; k < 3; ++k) out.at(k, i) = wa * half[0].at(k, i) + (1.0f - wa) * half[1].at(k, i);
+  });
+  return out;
+}
+
+struct Candidates {
+  std::vector<const Planes*> half[2];  // each filter's halves (none for the unfiltered colour)
+  std::vector<Planes> colour;  // halves combined; candidate 0 the unfiltered colour
+};
+
+Candidates candidates(const Halves& halves, const std::vector<Filtered>& passes, const Unfiltered& noisy) {
+  Candidates out;
+  out.colour.push_back(noisy.rgb);
+  for (int h = 0; h < 2; ++h) out.half[h].push_back(nullptr);
+  for (const Filtered& f : passes)
+    for (int band = 0; band < 2; ++band) {
+      const Planes pair[2] = {f.filtered[0][band], f.filtered[1][band]};
+      out.colour.push_back(combined(halves, pair));
+      for (int h = 0; h < 2; ++h) out.half[h].push_back(&f.filtered[h][band]);
+    }
   return out;
 }
 
 // Per pixel and candidate: the estimated relative squared error, summed over channels.
-Planes pixel_errors(const Halves& halves, const Filtered& filtered, const Planes (&colour)[kCandidates]) {
+Planes pixel_errors(const Halves& halves, const Candidates& cand) {
   const Half& a = halves.h[0];
   const Half& b = halves.h[1];
-  Planes err(a.color.width, a.color.height, kCandidates);
-  for (std::size_t i = 0; i < err.pixels(); ++i) {
+  const int count = static_cast<int>(cand.colour.size());
+  Planes err(a.color.width, a.color.height, count);
+  each_pixel(err.pixels(), [&](std::size_t i) {
     const float wa = weight_a(halves, i), wb = 1.0f - wa;
-    float e[kCandidates] = {0.0f, 0.0f, 0.0f};
     for (int k = 0; k < 3; ++k) {
-      float s = colour[0].at(k, i);
-      for (int c = 1; c < kCandidates; ++c) s = std::min(s, colour[c].at(k, i));
+      float s = cand.colour[0].at(k, i);
+      for (int c = 1; c < count; ++c) s = std::min(s, cand.colour[c].at(k, i));
       s = std::max(s, 0.0f);
       const float inv = 1.0f / (s * s + kRelativeEpsilon);
-      const float va = a.pixel_variance.at(k, i), vb = b.pixel_variance.at(k, i);
-      for (int c = 0; c < kUnfiltered; ++c) {
-        const float da = filtered.filtered[0][c].at(k, i) - b.color.at(k, i);
-        const float db = filtered.filtered[1][c].at(k, i) - a.color.at(k, i);
-        e[c] += 0.5f * (da * da - vb + db * db - va) * inv;
+      const float va = a.pixel_variance.at(k, i) / kHalfVarianceBias, vb = b.pixel_variance.at(k, i) / kHalfVarianceBias;
+      err.at(kUnfiltered, i) += (wa * wa * va + wb * wb * vb) * inv;
+      for (int c = 1; c < count; ++c) {
+        const float da = cand.half[0][c]->at(k, i) - b.color.at(k, i);
+        const float db = cand.half[1][c]->at(k, i) - a.color.at(k, i);
+        err.at(c, i) += 0.5f * (da * da - vb + db * db - va) * inv;
       }
-      e[kUnfiltered] += (wa * wa * va + wb * wb * vb) * inv;
     }
-    for (int c = 0; c < kCandidates; ++c) err.at(c, i) = e[c];
-  }
+  });
   return err;
 }
 
@@ -65,17 +107,20 @@ bool offered(const Unfiltered& noisy, const Planes& estimated, const std::vector
              std::size_t i) {
   if (noisy.present[i] == 0.0f || estimated.at(0, i) == 0.0f) return false;
   if (both[i] != 0.0f) return true;
-  const float e = error.at(kUnfiltered, i);
-  return e < error.at(0, i) && e < error.at(1, i);
+  for (int c = 0; c < error.channels; ++c)
+    if (c != kUnfiltered && !(error.at(kUnfiltered, i) < error.at(c, i))) return false;
+  return true;
 }
 
 }  // namespace
 
-Selection select_and_combine(const Halves& halves, const Filtered& filtered, const Unfiltered& noisy, int radius,
-                             int blend_radius) {
+Selection select_and_combine(const Halves& halves, const std::vector<Filtered>& passes, const Unfiltered& noisy,
+                             int radius, int blend_radius) {
   const Half& a = halves.h[0];
   const Half& b = halves.h[1];
-  const Planes colour[kCandidates] = {combined(halves, filtered, 0), combined(halves, filtered, 1), noisy.rgb};
+  const Candidates cand = candidates(halves, passes, noisy);
+  const int count = static_cast<int>(cand.colour.size());
+  if (count > kMaxCandidates) throw std::invalid_argument("denoise: at most 2 regression passes");
   const std::size_t n = a.valid.size();
   const int w = a.color.width, h = a.color.height;
 
@@ -86,36 +131,39 @@ Selection select_and_combine(const Halves& halves, const Filtered& filtered, con
   Planes both_plane(w, h, 1);
   both_plane.data = both;
   const Planes estimated = box_mean(both_plane, radius);
-  Selection out{Planes(w, h, 3), std::vector<std::uint8_t>(n),
-                box_mean(pixel_errors(halves, filtered, colour), radius, &both)};
+  Selection out{Planes(w, h, 3), std::vector<std::uint8_t>(n), box_mean(pixel_errors(halves, cand), radius, &both)};
 
   // Weights relative to the unfiltered colour's, so they lie in [0, 1 / kErrorFloor^2] and
-  // the box sums stay exact (1 / error^2 spans too many decades for a running sum).
-  Planes weight(w, h, kCandidates);
-  for (std::size_t i = 0; i < n; ++i) {
+  // the box sums stay exact (1 / error^2 spans too many decades for a running sum). The
+  // filters' share is divided among them (kFilterShare), so that more filters do not crowd out
+  // the unfiltered colour by their number.
+  const float share = kFilterShare / (count - 1);
+  Planes weight(w, h, count);
+  each_pixel(n, [&](std::size_t i) {
     const float unfiltered = std::max(out.error.at(kUnfiltered, i), kTinyError);
-    for (int c = 0; c < kCandidates; ++c) {
+    for (int c = 0; c < count; ++c) {
       const float ratio = unfiltered / std::max(out.error.at(c, i), kErrorFloor * unfiltered);
-      weight.at(c, i) = std::isfinite(ratio) ? ratio * ratio : 0.0f;  // NaN, inf: no weight
+      weight.at(c, i) = std::isfinite(ratio) ? ratio * ratio * (c == kUnfiltered ? 1.0f : share) : 0.0f;  // NaN, inf: none
     }
-  }
+  });
   const Planes blended = box_mean(weight, blend_radius);
-  for (std::size_t i = 0; i < n; ++i) {
-    float wt[kCandidates];
-    for (int c = 0; c < kCandidates; ++c) wt[c] = blended.at(c, i);
+  each_pixel(n, [&](std::size_t i) {
+    float wt[kMaxCandidates];
+    for (int c = 0; c < count; ++c) wt[c] = blended.at(c, i);
     if (!offered(noisy, estimated, both, out.error, i)) wt[kUnfiltered] = 0.0f;
-    if (!(wt[0] + wt[1] + wt[2] > 0.0f)) wt[0] = wt[1] = 1.0f;  // no usable estimate: the filters alike
-    int best = 0;
-    for (int c = 1; c < kCandidates; ++c)
-      if (wt[c] > wt[best]) best = c;
-    out.chosen[i] = static_cast<std::uint8_t>(best);
-    const float total = wt[0] + wt[1] + wt[2];
+    float total = 0.0f;
+    for (int c = 0; c < count; ++c) total += wt[c];
+    if (!(total > 0.0f)) {  // no usable estimate: the filters alike
+      for (int c = 0; c < count; ++c) wt[c] = c == kUnfiltered ? 0.0f : 1.0f;
+      total = static_cast<float>(count - 1);
+    }
+    out.chosen[i] = static_cast<std::uint8_t>(std::max_element(wt, wt + count) - wt);
     for (int k = 0; k < 3; ++k) {
       float v = 0.0f;
-      for (int c = 0; c < kCandidates; ++c) v += wt[c] * colour[c].at(k, i);
+      for (int c = 0; c < count; ++c) v += wt[c] * cand.colour[c].at(k, i);
       out.rgb.at(k, i) = v / total;
     }
-  }
+  });
   return out;
 }
 

@@ -22,16 +22,17 @@
 
 namespace tessera::denoiser {
 
-constexpr int kCandidates = 3;  // the two bandwidths, then the unfiltered colour
-constexpr int kUnfiltered = 2;
+constexpr int kUnfiltered = 0;  // candidate 0; filter pass p, bandwidth b is 1 + 2 p + b
+constexpr int kMaxCandidates = 5;  // two passes
 
 struct Selection {
   Planes rgb;  // 3 channels: the blended candidates, halves combined by their sample counts
   std::vector<std::uint8_t> chosen;  // per pixel: the candidate of the largest blended weight
-  Planes error;  // kCandidates channels: each candidate's estimated relative error (box mean)
+  Planes error;  // one channel per candidate: its estimated relative error (box mean)
 };
 
-Selection select_and_combine(const Halves& halves, const Filtered& filtered, const Unfiltered& noisy, int radius,
-                             int blend_radius);
+// `passes`: the regressions' results (each two bandwidths), at least one.
+Selection select_and_combine(const Halves& halves, const std::vector<Filtered>& passes, const Unfiltered& noisy,
+                             int radius, int blend_radius);
 
 }  // namespace tessera::denoiser
