@@ -21,11 +21,13 @@ constexpr float kSelfWeight = 1e-3f;
 // A pixel whose windows' weights sum to less than this (with no data of its own) keeps its
 // filled colour: below it, weight x fit products are denormal and their ratio meaningless.
 constexpr float kMinWeightSum = 1e-30f;
-// The smallest ratio of the LDLT pivots of the Jacobi-scaled (unit diagonal) normal matrix,
-// min |D| / max |D| (a cheap stand-in for its reciprocal condition number: no extra solves),
-// below which a window's first-order fit is not trusted and its weighted mean is used instead.
-// The default ridge alone keeps the smallest pivot above ~ridge = 1e-3 (the largest is at
-// most P); this guards ridge = 0 and degenerate windows (collinear or constant features).
+// The smallest ratio of the Cholesky pivots L_ii^2 of the Jacobi-scaled (unit diagonal)
+// normal matrix, min / max (a cheap stand-in for its reciprocal condition number: no extra
+// solves), below which a window's first-order fit is not trusted and its weighted mean is
+// used instead; so is a matrix that is not positive definite (Cholesky fails). The default
+// ridge alone keeps the smallest pivot above ~ridge = 1e-3 (the largest is at most P); this
+// guards ridge = 0 and degenerate windows (collinear or constant features). Cholesky (LLT)
+// rather than the pivoting LDLT: the regression 10% faster, the results alike.
 constexpr double kMinPivotRatio = 1e-7;
 
 using RowMatrix = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic>;
@@ -147,10 +149,10 @@ void solve(const Context& ctx, int n, Scratch& s) {
     }
     for (int j = 1; j < P; ++j) G(j, j) += ctx.p.ridge * G(j, j) + 1e-6 * total;
     const Eigen::Matrix<double, P, 1> d = G.diagonal().cwiseSqrt().cwiseInverse();
-    const Eigen::LDLT<Eigen::Matrix<double, P, P>> ldlt(d.asDiagonal() * G * d.asDiagonal());
-    const Eigen::Matrix<double, P, 3> beta = d.asDiagonal() * ldlt.solve(d.asDiagonal() * b);
-    const auto pivots = ldlt.vectorD().cwiseAbs();
-    if (ldlt.info() == Eigen::Success && pivots.minCoeff() >= kMinPivotRatio * pivots.maxCoeff() && beta.allFinite()) {
+    const Eigen::LLT<Eigen::Matrix<double, P, P>> llt(d.asDiagonal() * G * d.asDiagonal());
+    const Eigen::Matrix<double, P, 3> beta = d.asDiagonal() * llt.solve(d.asDiagonal() * b);
+    const Eigen::Matrix<double, P, 1> pivots = llt.matrixLLT().diagonal().cwiseAbs2();  // Cholesky's pivots
+    if (llt.info() == Eigen::Success && pivots.minCoeff() >= kMinPivotRatio * pivots.maxCoeff() && beta.allFinite()) {
       s.beta.middleCols<3>(3 * v) = beta.cast<float>();
     } else {
       s.beta.middleCols<3>(3 * v).setZero();
