@@ -1,11 +1,13 @@
 // Weighing the candidates per pixel (NFOR section 5, plus the unfiltered colour).
 // The error of filtered half A is estimated against the independent noisy half B,
 // E[(F_A - B)^2] = MSE(F_A) + Var(B), so MSE(F_A) ~ (F_A - B)^2 - Var(B); symmetrically for
-// F_B. The third candidate is the noisy colour as given (not demodulated, and at a pixel the
-// outlier test flagged, with its firefly: see offered() in selection.cpp), whose error is the
+// F_B. Candidate 0 is the noisy colour as given (not demodulated, and at a pixel the outlier
+// test flagged, with its firefly: see offered() in selection.cpp), whose error is the
 // variance of the halves' mean, wa^2 Var(A) + wb^2 Var(B): half a single half's for equal
 // halves (it was compared as a single half's, which undervalued it 2x). A filtered half's
 // error is kept as it is, an upper bound of the combined filter's (the halves share its bias).
+// Var(A) and Var(B) are the halves' 1-dof estimates corrected for the sampler's
+// anticorrelated halves (kHalfVarianceBias in selection.cpp).
 // Errors are relative, (error) / (s^2 + 0.01) per channel with s the smallest candidate value
 // (the denoiser's target, relMSE), so that a highlight's large absolute errors do not decide
 // for the dark pixels in its box; they are averaged over a box because a single pixel's
