@@ -128,6 +128,20 @@ TEST(DenoiserInput, SizeMismatchThrows) {
   EXPECT_THROW(denoise(in, {}), std::invalid_argument);
 }
 
+TEST(DenoiserInput, WidePassParametersAreChecked) {
+  const DenoiseInput in = make_input(Scene{});
+  DenoiseParams p;
+  p.wide_stride = p.wide_radius + 2;  // a pixel could be reached by no window
+  EXPECT_THROW(denoise(in, p), std::invalid_argument);
+  p = {};
+  p.wide_radius = 33;
+  EXPECT_THROW(denoise(in, p), std::invalid_argument);
+  p = {};
+  p.wide_radius = 0;  // no wide pass: the stride is then not used
+  p.wide_stride = 0;
+  EXPECT_NO_THROW(denoise(in, p));
+}
+
 TEST(Denoiser, ConstantImageStaysConstant) {
   // Varying noise-free features, constant colour: every window's fit is the constant, with
   // zero coefficients on the features.
