@@ -9,8 +9,9 @@
 // (compared linearly, its variance made it "similar" to everything, and its energy leaked
 // into dark neighbours' fits as halos). The colour is regressed demodulated, divided by the
 // albedo plus epsilon (denoiser/demodulate.h), and multiplied back before the selection. Two
-// candidate bandwidths are run; per pixel, they and the unfiltered colour are blended by the
-// inverse square of the relative error the half buffers estimate (denoiser/selection.h).
+// candidate bandwidths are run in each of two window sizes (9x9 and 17x17); per pixel, the
+// four and the unfiltered colour are blended by the inverse square of the relative error the
+// half buffers estimate (denoiser/selection.h).
 //
 // Before all that, fireflies are taken out of each half buffer (denoiser/outliers.h, after
 // Cycles' denoiser): a pixel brighter than twice the 75th percentile of its 5x5 neighbourhood
