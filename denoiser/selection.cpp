@@ -48,30 +48,32 @@ float weight_a(const Halves& halves, std::size_t i) {
 }
 
 // A filtered candidate's colour, halves combined.
-Planes combined(const Halves& halves, const Planes (&half)[2]) {
-  Planes out(half[0].width, half[0].height, 3);
+Planes combined(const Halves& halves, const Planes& half_a, const Planes& half_b) {
+  Planes out(half_a.width, half_a.height, 3);
   each_pixel(out.pixels(), [&](std::size_t i) {
     const float wa = weight_a(halves, i);
-    for (int k = 0; k < 3; ++k) out.at(k, i) = wa * half[0].at(k, i) + (1.0f - wa) * half[1].at(k, i);
+    for (int k = 0; k < 3; ++k) out.at(k, i) = wa * half_a.at(k, i) + (1.0f - wa) * half_b.at(k, i);
   });
   return out;
 }
 
 struct Candidates {
-  std::vector<const Planes*> half[2];  // each filter's halves (none for the unfiltered colour)
-  std::vector<Planes> colour;  // halves combined; candidate 0 the unfiltered colour
+  std::vector<const Planes*> half[2];  // each filter's halves (null for the unfiltered colour)
+  std::vector<Planes> filtered;  // the filters' halves combined
+  std::vector<const Planes*> colour;  // candidate 0 the unfiltered colour, then the filters'
 };
 
 Candidates candidates(const Halves& halves, const std::vector<Filtered>& passes, const Unfiltered& noisy) {
   Candidates out;
-  out.colour.push_back(noisy.rgb);
   for (int h = 0; h < 2; ++h) out.half[h].push_back(nullptr);
   for (const Filtered& f : passes)
     for (int band = 0; band < 2; ++band) {
-      const Planes pair[2] = {f.filtered[0][band], f.filtered[1][band]};
-      out.colour.push_back(combined(halves, pair));
+      out.filtered.push_back(combined(halves, f.filtered[0][band], f.filtered[1][band]));
       for (int h = 0; h < 2; ++h) out.half[h].push_back(&f.filtered[h][band]);
     }
+  out.colour.push_back(&noisy.rgb);
+  // Pointers into `filtered`, now complete (moving a Candidates keeps its elements in place).
+  for (const Planes& p : out.filtered) out.colour.push_back(&p);
   return out;
 }
 
@@ -84,8 +86,8 @@ Planes pixel_errors(const Halves& halves, const Candidates& cand) {
   each_pixel(err.pixels(), [&](std::size_t i) {
     const float wa = weight_a(halves, i), wb = 1.0f - wa;
     for (int k = 0; k < 3; ++k) {
-      float s = cand.colour[0].at(k, i);
-      for (int c = 1; c < count; ++c) s = std::min(s, cand.colour[c].at(k, i));
+      float s = cand.colour[0]->at(k, i);
+      for (int c = 1; c < count; ++c) s = std::min(s, cand.colour[c]->at(k, i));
       s = std::max(s, 0.0f);
       const float inv = 1.0f / (s * s + kRelativeEpsilon);
       const float va = a.pixel_variance.at(k, i) / kHalfVarianceBias, vb = b.pixel_variance.at(k, i) / kHalfVarianceBias;
@@ -161,7 +163,7 @@ Selection select_and_combine(const Halves& halves, const std::vector<Filtered>& 
     out.chosen[i] = static_cast<std::uint8_t>(std::max_element(wt, wt + count) - wt);
     for (int k = 0; k < 3; ++k) {
       float v = 0.0f;
-      for (int c = 0; c < count; ++c) v += wt[c] * cand.colour[c].at(k, i);
+      for (int c = 0; c < count; ++c) v += wt[c] * cand.colour[c]->at(k, i);
       out.rgb.at(k, i) = v / total;
     }
   });
