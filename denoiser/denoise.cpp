@@ -22,13 +22,15 @@ DenoiseResult run(const DenoiseInput& in, const DenoiseParams& p) {
   Halves halves = p.demodulate ? prepare_halves(demodulated_colour(in, factor), p) : prepare_halves(in, p);
   const Features features = prepare_features(in, p, halves);
   const Planes filtered_features = prefilter_features(features, p.feature_radius, p.feature_bandwidth);
-  Filtered filtered = regress(halves, filtered_features, p);
+  std::vector<Filtered> passes{regress(halves, filtered_features, p.radius, p.stride, p)};
+  if (p.wide_radius > 0) passes.push_back(regress(halves, filtered_features, p.wide_radius, p.wide_stride, p));
   if (p.demodulate) {  // the selection judges colour, as relMSE does
     remodulate(halves, factor);
-    for (auto& half : filtered.filtered)
-      for (Planes& candidate : half) remodulate(candidate, factor);
+    for (Filtered& filtered : passes)
+      for (auto& half : filtered.filtered)
+        for (Planes& candidate : half) remodulate(candidate, factor);
   }
-  const Selection selection = select_and_combine(halves, filtered, p.selection_radius, p.selection_blend_radius);
+  const Selection selection = select_and_combine(halves, passes, unfiltered_colour(in), p.selection_radius, p.selection_blend_radius);
 
   const std::size_t n = selection.rgb.pixels();
   DenoiseResult out;

@@ -9,16 +9,17 @@
 // (compared linearly, its variance made it "similar" to everything, and its energy leaked
 // into dark neighbours' fits as halos). The colour is regressed demodulated, divided by the
 // albedo plus epsilon (denoiser/demodulate.h), and multiplied back before the selection. Two
-// candidate bandwidths are run; per pixel, they and
-// the unfiltered colour are chosen by the relative error the half buffers estimate, and
-// blended over a small box; the two halves are then combined.
+// candidate bandwidths are run in each of two window sizes (9x9 and 17x17); per pixel, the
+// four and the unfiltered colour are blended by the inverse square of the relative error the
+// half buffers estimate (denoiser/selection.h).
 //
 // Before all that, fireflies are taken out of each half buffer (denoiser/outliers.h, after
 // Cycles' denoiser): a pixel brighter than twice the 75th percentile of its 5x5 neighbourhood
 // that the other half does not confirm is scaled down to that reference for the weights and
 // is data for no window. This is a bias: the energy of a removed firefly is not in the denoised
-// colour (the caller's noisy beauty keeps it). Each window's fit is bounded by the range of the
-// colours it was fitted to, so no window extrapolates.
+// colour (the caller's noisy beauty keeps it) unless the selection keeps the noisy colour there
+// (denoiser/selection.cpp, offered()). Each window's fit is bounded by the range of the colours
+// it was fitted to, so no window extrapolates.
 //
 // A plain image-processing library: Eigen, TBB and the standard library only.
 #pragma once
@@ -55,6 +56,13 @@ struct DenoiseParams {
   // box's edges got worse.
   int radius = 4;
   int stride = 3;
+  // A second regression with larger windows (0: none), whose two bandwidths are two more
+  // candidates for the selection: flat, noisy regions (the Cornell box's walls) keep a
+  // low-frequency residue through 9x9 windows that 17x17 ones average away, and the
+  // selection takes them only where their estimated error is lower. Radius 8, stride 6 costs
+  // less than 4 and 3 (fewer centres).
+  int wide_radius = 8;
+  int wide_stride = 6;
   // The candidate NL-means bandwidths k: a strict one for detail, a wide one for smooth
   // regions (the unfiltered colour covers where both filters err: 0.35 and 2 measured lower
   // relMSE than NFOR's 0.5 and 1 on the Cornell box, DamagedHelmet and the grid of spheres).
@@ -63,7 +71,7 @@ struct DenoiseParams {
   float feature_bandwidth = 1.0f;
   int variance_radius = 2;  // the 1-dof per-pixel variance is averaged over (2 r + 1)^2 pixels
   int selection_radius = 3;  // the estimated error of each candidate is averaged likewise
-  int selection_blend_radius = 3;  // each pixel blends the candidates chosen in its (2 r + 1)^2 box
+  int selection_blend_radius = 3;  // each pixel blends the candidates' weights over its (2 r + 1)^2 box
   // Albedo demodulation (denoiser/demodulate.h): the regression filters colour / (albedo +
   // epsilon). 0.1 rather than 0.01: at an edge or under depth of field the mean albedo is noisy
   // and a small epsilon lets that noise divide the colour (the grid of spheres 3.1e-3 at 0.1,
@@ -75,7 +83,7 @@ struct DenoiseParams {
 
 struct DenoiseResult {
   std::vector<float> rgb;  // 3 per pixel, finite, non-negative
-  std::vector<std::uint8_t> selected;  // 1 per pixel: the chosen candidate, 0 or 1 a bandwidth, 2 the unfiltered colour
+  std::vector<std::uint8_t> selected;  // 1 per pixel: the candidate of the largest weight, 0 the unfiltered colour, 1 + 2 pass + bandwidth a filter
   std::vector<float> variance;  // 1 per pixel: the estimated variance of the noisy mean colour (channel average), fireflies excluded
   std::vector<std::uint8_t> outliers;  // 1 per pixel: bit 0 the even half was a firefly there, bit 1 the odd half
 };

@@ -120,6 +120,9 @@ void validate(const DenoiseInput& in, const DenoiseParams& p) {
     throw std::invalid_argument("denoise: the feature half buffers must be given all four or none");
   if (p.radius < 1 || p.radius > 32) throw std::invalid_argument("denoise: radius must be in [1, 32]");
   if (p.stride < 1 || p.stride > p.radius + 1) throw std::invalid_argument("denoise: stride must be in [1, radius + 1]");
+  if (p.wide_radius < 0 || p.wide_radius > 32) throw std::invalid_argument("denoise: wide_radius must be in [0, 32]");
+  if (p.wide_radius > 0 && (p.wide_stride < 1 || p.wide_stride > p.wide_radius + 1))
+    throw std::invalid_argument("denoise: wide_stride must be in [1, wide_radius + 1]");
   if (p.feature_radius < 0 || p.feature_radius > 16) throw std::invalid_argument("denoise: feature_radius must be in [0, 16]");
   if (p.variance_radius < 0 || p.selection_radius < 0 || p.selection_blend_radius < 0) throw std::invalid_argument("denoise: radii must be >= 0");
   for (float k : p.bandwidths)
@@ -163,6 +166,28 @@ Halves prepare_halves(const DenoiseInput& in, const DenoiseParams& p) {
         log_variance.at(c, i) /= count;
       }
     make_guide(h, log_variance, any);
+  }
+  return out;
+}
+
+Unfiltered unfiltered_colour(const DenoiseInput& in) {
+  const std::size_t n = static_cast<std::size_t>(in.width) * in.height;
+  std::vector<float> count[2];
+  sample_counts(in, count[0], count[1]);
+  const std::vector<float>* src[2] = {&in.color_even, &in.color_odd};
+  Unfiltered out{Planes(in.width, in.height, 3), std::vector<float>(n)};
+  for (std::size_t i = 0; i < n; ++i) {
+    float total = 0.0f;
+    for (int h = 0; h < 2; ++h) {
+      if (!(count[h][i] > 0.0f) || !finite3(*src[h], i)) continue;
+      total += count[h][i];
+      for (int c = 0; c < 3; ++c) out.rgb.at(c, i) += count[h][i] * (*src[h])[3 * i + c];
+    }
+    bool finite = total > 0.0f;
+    for (int c = 0; c < 3; ++c) finite = finite && std::isfinite(out.rgb.at(c, i) /= total);
+    out.present[i] = finite ? 1.0f : 0.0f;  // a sum that overflowed is missing too
+    if (!finite)
+      for (int c = 0; c < 3; ++c) out.rgb.at(c, i) = 0.0f;
   }
   return out;
 }

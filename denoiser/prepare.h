@@ -31,6 +31,15 @@ void validate(const DenoiseInput& in, const DenoiseParams& p);
 
 Halves prepare_halves(const DenoiseInput& in, const DenoiseParams& p);
 
+// The noisy colour as the caller gave it (fireflies included, not demodulated): the finite
+// halves' mean weighted by their sample counts, the selection's unfiltered candidate.
+struct Unfiltered {
+  Planes rgb;  // 3 channels; 0 where `present` is 0
+  std::vector<float> present;  // 1 where either half is finite and has samples
+};
+
+Unfiltered unfiltered_colour(const DenoiseInput& in);
+
 struct Features {
   Planes values;  // albedo (3), normal (3), then depth (1) when given
   Planes variance;  // of the albedo and normal means (6); empty when the input has no feature halves

@@ -14,7 +14,9 @@ struct Filtered {
   Planes filtered[2][2];
 };
 
-// Runs in the caller's arena; the result does not depend on the number of threads.
-Filtered regress(const Halves& halves, const Planes& features, const DenoiseParams& p);
+// Windows of (2 radius + 1)^2 pixels centred every `stride` pixels (the rest of the
+// parameters from p). Runs in the caller's arena; the result does not depend on the number
+// of threads.
+Filtered regress(const Halves& halves, const Planes& features, int radius, int stride, const DenoiseParams& p);
 
 }  // namespace tessera::denoiser
