@@ -43,9 +43,8 @@ int run_denoise(const DenoiseOptions& o) {
                                  "--aov halves,albedo,normal)",
                                  o.input, missing.size() > 1 ? "s" : "", fmt::join(missing, ", ")));
   const FrameWindow window = exr.window;
+  const DenoiseParams params = denoise_params(o.threads, exr.sampler);
   FrameImage frame = frame_from_exr(std::move(exr));
-  DenoiseParams params;
-  params.threads = o.threads;
   const double seconds = denoise_frame(frame, params);
   ImageWriteParams write;
   write.header_from = o.input;

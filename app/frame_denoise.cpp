@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "renderer/exr_layers.h"
+#include "renderer/sampler.h"
 
 namespace tessera {
 
@@ -18,6 +19,13 @@ const std::vector<std::string>& denoise_channels() {
     return out;
   }();
   return names;
+}
+
+DenoiseParams denoise_params(int threads, const std::string& sampler) {
+  DenoiseParams p;
+  p.threads = threads;
+  if (sampler == sampler_name(SamplerKind::independent)) p.half_variance_bias = 1.0f;
+  return p;
 }
 
 DenoiseInput denoise_input(const FrameImage& frame) {

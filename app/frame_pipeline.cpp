@@ -299,9 +299,7 @@ double finish_frame(const FramePlan& plan, FrameImage& image, ImageWriteParams p
                     const std::string& resume_text, bool denoise) {
   double seconds = 0.0;
   if (denoise) {
-    DenoiseParams denoise_params;
-    denoise_params.threads = plan.settings.threads;
-    seconds = denoise_frame(image, denoise_params);
+    seconds = denoise_frame(image, denoise_params(plan.settings.threads, sampler_name(plan.settings.sampler)));
     params.metadata.denoised = true;
   }
   if (params.metadata.partial && is_exr_path(plan.output)) {

@@ -30,7 +30,8 @@ DenoiseResult run(const DenoiseInput& in, const DenoiseParams& p) {
       for (auto& half : filtered.filtered)
         for (Planes& candidate : half) remodulate(candidate, factor);
   }
-  const Selection selection = select_and_combine(halves, passes, unfiltered_colour(in), p.selection_radius, p.selection_blend_radius);
+  const Selection selection = select_and_combine(halves, passes, unfiltered_colour(in), p.selection_radius, p.selection_blend_radius,
+                                                 p.half_variance_bias);
 
   const std::size_t n = selection.rgb.pixels();
   DenoiseResult out;

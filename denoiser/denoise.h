@@ -71,7 +71,15 @@ struct DenoiseParams {
   float feature_bandwidth = 1.0f;
   int variance_radius = 2;  // the 1-dof per-pixel variance is averaged over (2 r + 1)^2 pixels
   int selection_radius = 3;  // the estimated error of each candidate is averaged likewise
-  int selection_blend_radius = 3;  // each pixel blends the candidates' weights over its (2 r + 1)^2 box
+  int selection_blend_radius = 3;
+  // The per-pixel variance of a half from the two, (A - B)^2 / (1/nA + 1/nB), assumes
+  // independent halves; tessera's default Sobol sampler stratifies even and odd samples
+  // together, so they are anticorrelated and it reads high: 1.27-1.30x each half's true error
+  // at 16 spp on the three scenes of docs/performance.md. Divided by this (1.1 to 1.28
+  // measured: higher favours DamagedHelmet and the grid, lower the Cornell box), the noisy
+  // colour's error is not overstated nor the filters' (which subtract it) understated. 1 for
+  // independent halves: the app takes it from the frame's sampler (denoise_params in app/frame_denoise.h).
+  float half_variance_bias = 1.15f;  // each pixel blends the candidates' weights over its (2 r + 1)^2 box
   // Albedo demodulation (denoiser/demodulate.h): the regression filters colour / (albedo +
   // epsilon). 0.1 rather than 0.01: at an edge or under depth of field the mean albedo is noisy
   // and a small epsilon lets that noise divide the colour (the grid of spheres 3.1e-3 at 0.1,

@@ -16,15 +16,6 @@ constexpr float kRelativeEpsilon = 1e-2f;  // relMSE's: (x - ref)^2 / (ref^2 + 0
 // it caps a filter's weight at 100x the unfiltered colour's. 0.05 to 0.2 measured alike.
 constexpr float kErrorFloor = 0.1f;
 constexpr float kTinyError = 1e-10f;  // the unfiltered error where the colour is noise-free
-// The per-pixel variance of a half from the two halves, (A - B)^2 / (1/nA + 1/nB), assumes
-// independent halves; the default sampler's even and odd samples are stratified together and
-// anticorrelated, so it reads high: against the 4096 spp references of docs/performance.md,
-// 1.27-1.30x each half's true error at 16 spp on all three scenes. Dividing it by 1.15 (1.1
-// to 1.28 measured: higher favours DamagedHelmet and the grid, lower the Cornell box) keeps
-// the estimate from undervaluing the noisy colour (its error) and overvaluing the filters
-// (theirs subtracts it). With independent halves (--sampler independent) it makes the noisy
-// colour's error read 13% low.
-constexpr float kHalfVarianceBias = 1.15f;
 // The filters' weights are divided by their number over 2: two candidates per pass, so one
 // pass weighs as before and a second does not crowd out the noisy colour by number alone
 // (with both passes and the bias above, DamagedHelmet 1.81e-3 without, 1.73e-3 with; the
@@ -78,7 +69,7 @@ Candidates candidates(const Halves& halves, const std::vector<Filtered>& passes,
 }
 
 // Per pixel and candidate: the estimated relative squared error, summed over channels.
-Planes pixel_errors(const Halves& halves, const Candidates& cand) {
+Planes pixel_errors(const Halves& halves, const Candidates& cand, float half_variance_bias) {
   const Half& a = halves.h[0];
   const Half& b = halves.h[1];
   const int count = static_cast<int>(cand.colour.size());
@@ -90,7 +81,7 @@ Planes pixel_errors(const Halves& halves, const Candidates& cand) {
       for (int c = 1; c < count; ++c) s = std::min(s, cand.colour[c]->at(k, i));
       s = std::max(s, 0.0f);
       const float inv = 1.0f / (s * s + kRelativeEpsilon);
-      const float va = a.pixel_variance.at(k, i) / kHalfVarianceBias, vb = b.pixel_variance.at(k, i) / kHalfVarianceBias;
+      const float va = a.pixel_variance.at(k, i) / half_variance_bias, vb = b.pixel_variance.at(k, i) / half_variance_bias;
       err.at(kUnfiltered, i) += (wa * wa * va + wb * wb * vb) * inv;
       for (int c = 1; c < count; ++c) {
         const float da = cand.half[0][c]->at(k, i) - b.color.at(k, i);
@@ -118,7 +109,7 @@ bool offered(const Unfiltered& noisy, const Planes& estimated, const std::vector
 }  // namespace
 
 Selection select_and_combine(const Halves& halves, const std::vector<Filtered>& passes, const Unfiltered& noisy,
-                             int radius, int blend_radius) {
+                             int radius, int blend_radius, float half_variance_bias) {
   const Half& a = halves.h[0];
   const Half& b = halves.h[1];
   const Candidates cand = candidates(halves, passes, noisy);
@@ -134,7 +125,7 @@ Selection select_and_combine(const Halves& halves, const std::vector<Filtered>& 
   Planes both_plane(w, h, 1);
   both_plane.data = both;
   const Planes estimated = box_mean(both_plane, radius);
-  Selection out{Planes(w, h, 3), std::vector<std::uint8_t>(n), box_mean(pixel_errors(halves, cand), radius, &both)};
+  Selection out{Planes(w, h, 3), std::vector<std::uint8_t>(n), box_mean(pixel_errors(halves, cand, half_variance_bias), radius, &both)};
 
   // Weights relative to the unfiltered colour's, so they lie in [0, 1 / kErrorFloor^2] and
   // the box sums stay exact (1 / error^2 spans too many decades for a running sum). The

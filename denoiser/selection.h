@@ -7,7 +7,7 @@
 // halves (it was compared as a single half's, which undervalued it 2x). A filtered half's
 // error is kept as it is, an upper bound of the combined filter's (the halves share its bias).
 // Var(A) and Var(B) are the halves' 1-dof estimates corrected for the sampler's
-// anticorrelated halves (kHalfVarianceBias in selection.cpp).
+// anticorrelated halves (DenoiseParams::half_variance_bias).
 // Errors are relative, (error) / (s^2 + 0.01) per channel with s the smallest candidate value
 // (the denoiser's target, relMSE), so that a highlight's large absolute errors do not decide
 // for the dark pixels in its box; they are averaged over a box because a single pixel's
@@ -33,8 +33,9 @@ struct Selection {
   Planes error;  // one channel per candidate: its estimated relative error (box mean)
 };
 
-// `passes`: the regressions' results (each two bandwidths), at least one.
+// `passes`: the regressions' results (each two bandwidths), at least one; the halves' variance
+// estimates are divided by half_variance_bias (DenoiseParams).
 Selection select_and_combine(const Halves& halves, const std::vector<Filtered>& passes, const Unfiltered& noisy,
-                             int radius, int blend_radius);
+                             int radius, int blend_radius, float half_variance_bias);
 
 }  // namespace tessera::denoiser

@@ -7,6 +7,7 @@
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfStringAttribute.h>
 
 #include "renderer/exr_layers.h"
 #include "renderer/image_output.h"
@@ -35,6 +36,7 @@ ExrChannels read_exr_channels(const std::string& path) {
     const Imath::Box2i display = file.header().displayWindow();
     if (display != window && display.min == Imath::V2i(0, 0))
       out.window = {window.min.x, window.min.y, display.max.x + 1, display.max.y + 1};
+    if (const auto* s = file.header().findTypedAttribute<Imf::StringAttribute>("sampler")) out.sampler = s->value();
     const std::size_t n = static_cast<std::size_t>(out.width) * out.height;
     Imf::FrameBuffer fb;
     for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it) {

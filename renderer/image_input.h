@@ -21,6 +21,7 @@ struct ExrChannels {
   int width = 0, height = 0;
   FrameWindow window;  // where the pixels lie in the file's display window (a crop)
   std::map<std::string, std::vector<float>> channels;  // by name, one float per pixel, row-major
+  std::string sampler;  // the header's `sampler` (tessera's frames name theirs); empty: none
 
   bool has(const std::string& name) const { return channels.count(name) != 0; }
   // Interleaves the named channels (3 per pixel for {"R", "G", "B"}). Empty when any is missing.

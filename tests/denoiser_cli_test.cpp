@@ -63,9 +63,10 @@ Channels synthetic_frame() {
   return ch;
 }
 
-void write_exr(const std::string& path, Channels& ch) {
+void write_exr(const std::string& path, Channels& ch, const std::string& sampler = "") {
   Imf::Header header(kW, kH);
   header.insert("samplesPerPixel", Imf::IntAttribute(8));
+  if (!sampler.empty()) header.insert("sampler", Imf::StringAttribute(sampler));
   header.insert("scene", Imf::StringAttribute("synthetic"));
   Imf::FrameBuffer fb;
   for (auto& [name, values] : ch) {
@@ -118,19 +119,8 @@ TEST(DenoiseCli, UnreadableInputExits2) {
   EXPECT_EQ(r.err.rfind("tessera: error: " + dir + "/none.exr: cannot be read as an OpenEXR image", 0), 0u) << r.err;
 }
 
-TEST(DenoiseCli, RoundTripWritesDenoisedNoisyAndCarriesEverythingOver) {
-  const std::string dir = test::make_temp_dir("denoise-roundtrip");
-  Channels ch = synthetic_frame();
-  const std::string in = dir + "/in.exr", out = dir + "/out.exr", preview = dir + "/out.png";
-  write_exr(in, ch);
-  const auto r = tessera("denoise '" + in + "' -o '" + out + "' --preview '" + preview + "' -q");
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(r.err, "");
-  EXPECT_TRUE(fs::exists(preview));
-  Imf::Header header;
-  const Channels got = read_exr(out, &header);
-
-  // The denoised RGB is the library's, bit for bit, on the same buffers (it is deterministic).
+// The buffers of a synthetic frame as the library takes them.
+DenoiseInput library_input(const Channels& ch) {
   DenoiseInput di;
   di.width = kW, di.height = kH;
   di.color_even = interleave(ch, {"even.R", "even.G", "even.B"});
@@ -143,7 +133,24 @@ TEST(DenoiseCli, RoundTripWritesDenoisedNoisyAndCarriesEverythingOver) {
   di.normal_odd = interleave(ch, {"odd.N.X", "odd.N.Y", "odd.N.Z"});
   di.depth = ch.at("Z");
   di.samples = ch.at("spp");
-  EXPECT_EQ(interleave(got, {"R", "G", "B"}), denoise(di, {}).rgb);
+  return di;
+}
+
+TEST(DenoiseCli, RoundTripWritesDenoisedNoisyAndCarriesEverythingOver) {
+  const std::string dir = test::make_temp_dir("denoise-roundtrip");
+  Channels ch = synthetic_frame();
+  const std::string in = dir + "/in.exr", out = dir + "/out.exr", preview = dir + "/out.png";
+  write_exr(in, ch);
+  const auto r = tessera("denoise '" + in + "' -o '" + out + "' --preview '" + preview + "' -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+  EXPECT_TRUE(fs::exists(preview));
+  Imf::Header header;
+  const Channels got = read_exr(out, &header);
+
+  // The denoised RGB is the library's, bit for bit, on the same buffers (it is deterministic);
+  // a file that names no sampler is taken as the default sampler's.
+  EXPECT_EQ(interleave(got, {"R", "G", "B"}), denoise(library_input(ch), {}).rgb);
   EXPECT_EQ(got.at("A"), std::vector<float>(kW * kH, 1.0f));
 
   // The beauty became noisy.*, and every other channel is as it was.
@@ -156,13 +163,30 @@ TEST(DenoiseCli, RoundTripWritesDenoisedNoisyAndCarriesEverythingOver) {
   EXPECT_EQ(header.typedAttribute<Imf::StringAttribute>("scene").value(), "synthetic");
 }
 
+// Halves from the independent sampler are independent: the header's `sampler` turns off the
+// correction for the Sobol sampler's anticorrelated halves (DenoiseParams::half_variance_bias),
+// which changes the result.
+TEST(DenoiseCli, IndependentSamplersHalvesAreNotCorrected) {
+  const std::string dir = test::make_temp_dir("denoise-independent");
+  Channels ch = synthetic_frame();
+  write_exr(dir + "/in.exr", ch, "independent");
+  ASSERT_EQ(tessera("denoise '" + dir + "/in.exr' -o '" + dir + "/out.exr' -q").exit_code, 0);
+  DenoiseParams independent;
+  independent.half_variance_bias = 1.0f;
+  const std::vector<float> got = interleave(read_exr(dir + "/out.exr"), {"R", "G", "B"});
+  EXPECT_EQ(got, denoise(library_input(ch), independent).rgb);
+  EXPECT_NE(got, denoise(library_input(ch), {}).rgb);
+}
+
 // `render --denoise` and `tessera denoise` on a render with the same buffers are one
 // operation: the same denoised bits, and the noisy beauty is the plain render's, bit for bit
 // (denoising adds layers, it never changes the samples).
 TEST(DenoiseCli, RenderDenoiseEqualsDenoisingTheRenderedFile) {
   const std::string dir = test::make_temp_dir("denoise-render");
   const std::string scene = test::scene_path("cornell-box/cornell-box.gltf");
-  const std::string common = fmt::format(" --width {} --height {} --spp 8 --seed 3 -q", kW, kH);
+  for (const char* sampler : {"sobol", "independent"}) {
+  SCOPED_TRACE(sampler);
+  const std::string common = fmt::format(" --width {} --height {} --spp 8 --seed 3 -q --sampler {}", kW, kH, sampler);
   ASSERT_EQ(tessera("render '" + scene + "' -o '" + dir + "/plain.exr'" + common).exit_code, 0);
   ASSERT_EQ(tessera("render '" + scene + "' -o '" + dir + "/buffers.exr' --aov halves,albedo,normal" + common).exit_code, 0);
   const auto r = tessera("render '" + scene + "' -o '" + dir + "/denoised.exr' --denoise" + common);
@@ -179,6 +203,7 @@ TEST(DenoiseCli, RenderDenoiseEqualsDenoisingTheRenderedFile) {
   }
   EXPECT_EQ(header.typedAttribute<Imf::IntAttribute>("denoised").value(), 1);
   for (const char* c : {"even.R", "odd.R", "Albedo.G", "N.Z", "spp"}) EXPECT_EQ(denoised.count(c), 1u) << c;
+  }
 }
 
 }  // namespace

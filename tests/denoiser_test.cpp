@@ -665,7 +665,8 @@ TEST(DenoiserSelection, TheUnfilteredColourIsChosenWhereEveryFilterIsWorse) {
           for (int k = 0; k < 3; ++k) f.filtered[h][c].at(k, y * s.width + x) = x < s.width / 2 ? 0.7f : 0.5f;
     }
   const denoiser::Selection sel = denoiser::select_and_combine(halves, {f}, denoiser::unfiltered_colour(in),
-                                                               p.selection_radius, p.selection_blend_radius);
+                                                               p.selection_radius, p.selection_blend_radius,
+                                                               p.half_variance_bias);
   const int margin = p.selection_radius + p.selection_blend_radius;
   const std::vector<float> noisy = noisy_mean(in);
   double out_sq = 0.0, noisy_sq = 0.0;
@@ -706,7 +707,8 @@ TEST(DenoiserSelection, AFireflyFlaggedPixelKeepsItsNoisyColourWhereTheFiltersAr
   for (int h = 0; h < 2; ++h)
     for (int c = 0; c < 2; ++c) f.filtered[h][c] = denoiser::Planes(s.width, s.height, 3, 0.7f);
   const denoiser::Selection sel = denoiser::select_and_combine(halves, {f}, denoiser::unfiltered_colour(in),
-                                                               p.selection_radius, p.selection_blend_radius);
+                                                               p.selection_radius, p.selection_blend_radius,
+                                                               p.half_variance_bias);
   EXPECT_EQ(sel.chosen[i], denoiser::kUnfiltered);
   for (int k = 0; k < 3; ++k) EXPECT_NEAR(sel.rgb.at(k, i), 0.5f * (40.0f + in.color_odd[3 * i + k]), 0.04f);
 }
