@@ -66,6 +66,10 @@ void CameraSampler::sample(int fx, int fy, int s0, int n, PathCounters& counters
   }
   ClosestHit hits[kGroup];
   scene_.geometry->intersect_packet(rays, lanes, hits);
+  for (int l = 0; l < lanes; ++l)
+    if (hits[l].found) scene_.geometry->prefetch_triangle(hits[l].hit);
+  for (int l = 0; l < lanes; ++l)
+    if (hits[l].found) scene_.geometry->prefetch_corners(hits[l].hit);
   for (int k = 0; k < n; ++k) {
     if (lane[k] < 0) continue;
     const Ray& ray = rays[lane[k]];

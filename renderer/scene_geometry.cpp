@@ -594,6 +594,24 @@ const SceneGeometry::Placement& SceneGeometry::instance_placement(const HitRecor
   return scratch;
 }
 
+const TriangleMesh& SceneGeometry::hit_mesh(const HitRecord& hit) const {
+  if (hit.instance == RTC_INVALID_GEOMETRY_ID) return *top_geometry_[hit.geom].mesh;
+  return scene_.meshes[top_instances_[hit.instance].mesh].primitives[hit.geom];
+}
+
+void SceneGeometry::prefetch_triangle(const HitRecord& hit) const {
+  __builtin_prefetch(&hit_mesh(hit).indices[3 * hit.prim]);
+}
+
+void SceneGeometry::prefetch_corners(const HitRecord& hit) const {
+  const TriangleMesh& m = hit_mesh(hit);
+  const std::uint32_t* idx = &m.indices[3 * hit.prim];
+  for (int k = 0; k < 3; ++k) {
+    __builtin_prefetch(&m.positions[idx[k]]);
+    if (!m.normals.empty()) __builtin_prefetch(&m.normals[idx[k]]);
+  }
+}
+
 SceneGeometry::Corners SceneGeometry::corners(const Placement& pl, const std::uint32_t* idx, float time) const {
   const TriangleMesh& m = *pl.mesh;
   Corners c;

@@ -74,6 +74,12 @@ class SceneGeometry {
   ~SceneGeometry();
   SceneGeometry(const SceneGeometry&) = delete;
   SceneGeometry& operator=(const SceneGeometry&) = delete;
+  // Cache hints for surface(hit): the hit triangle's indices; then, reading them, its corners'
+  // positions and normals. The hits of a camera-ray packet (one pixel's samples, each on
+  // another small triangle) prefetched together overlap the misses that surface() would take
+  // one after another. Nothing depends on them but the time.
+  void prefetch_triangle(const HitRecord& hit) const;
+  void prefetch_corners(const HitRecord& hit) const;
 
   // With `geometric_normal`, also Embree's unnormalised geometric normal (in the hit
   // instance's own space: what a traversal-only pass needs, not shading).
@@ -172,6 +178,7 @@ class SceneGeometry {
     return hit.instance == RTC_INVALID_GEOMETRY_ID ? top_geometry_[hit.geom] : instance_placement(hit, scratch);
   }
   const Placement& instance_placement(const HitRecord& hit, Placement& scratch) const;
+  const TriangleMesh& hit_mesh(const HitRecord& hit) const;
   Corners corners(const Placement& pl, const std::uint32_t* idx, float time) const;  // in pl's space
 
 
