@@ -6,6 +6,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/display_options.h"
+
 namespace tessera {
 
 class RankGroup;
@@ -38,8 +40,7 @@ struct RenderOptions {
   std::string crop;  // --crop X0,X1,Y0,Y1 (fractions of the frame); empty: the whole frame
   std::string rank_scheduler = "dynamic";  // under MPI: dynamic (a shared counter) or static
   double rank_timeout = 600.0;  // under MPI: seconds without a sign of life before a rank is given up
-  std::string view_transform = "filmic";  // display formats: the built-in view
-  std::string ocio_config, ocio_display, ocio_view;  // a studio's OCIO config and its view
+  DisplayOptions display;  // --exposure, --view-transform, --ocio-*
   int motion_steps = 3;
   float aperture = 0.0f, focus_distance = 0.0f, fov = 0.0f;
   std::string background = "auto";
@@ -47,7 +48,6 @@ struct RenderOptions {
   float envmap_scale = 1.0f, envmap_rotate = 0.0f;
   std::vector<std::string> aovs;
   bool half = false;
-  float exposure = 0.0f;
   bool quiet = false;
   double time_limit = 0.0;  // seconds of sampling, 0: none
   double checkpoint = 0.0;  // seconds between checkpoints, 0: none
@@ -106,6 +106,7 @@ struct DenoiseOptions {
   std::string input;  // an EXR with the half buffers and the albedo and normal AOVs
   std::string output;  // .exr
   std::string preview;  // optional PNG (or any display format)
+  DisplayOptions display;  // the preview's look
   int threads = 0;  // 0 = all cores
   bool quiet = false;
 };

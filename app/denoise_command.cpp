@@ -26,6 +26,7 @@ void add_denoise_command(CLI::App& app, DenoiseOptions& o) {
                   "the header carried over")
       ->required();
   cmd->add_option("--preview", o.preview, "Also write the denoised frame as a display-referred image (sRGB), e.g. out.png");
+  add_display_options(cmd, o.display, "");
   cmd->add_option("--threads", o.threads, "Threads [default: all cores]")->check(CLI::Range(1, 1024));
   cmd->add_flag("-q,--quiet", o.quiet, "No summary (errors still print)");
 }
@@ -34,6 +35,15 @@ int run_denoise(const DenoiseOptions& o) {
   if (!is_exr_path(o.output)) throw UsageError(o.output + ": the denoised frame must be written as .exr");
   check_output_path(o.output);  // before any work
   if (!o.preview.empty()) check_output_path(o.preview);
+  ImageWriteParams preview;  // the view checked before any work, as render does
+  preview.display = plan_display(o.display);
+  preview.exposure = o.display.exposure;
+  const DisplayOptions plain;
+  const std::pair<const char*, bool> looks[] = {{"--exposure", o.display.exposure != plain.exposure},
+                                                {"--view-transform", o.display.view_transform != plain.view_transform},
+                                                {"--ocio-config", !o.display.ocio_config.empty()}};
+  for (const auto& [name, set] : looks)
+    if (set && o.preview.empty()) fmt::print(stderr, "tessera: warning: {}: applies to --preview, which is not given\n", name);
   ExrChannels exr = read_exr_channels(o.input);
   std::vector<std::string> missing;
   for (const std::string& name : denoise_channels())
@@ -50,7 +60,7 @@ int run_denoise(const DenoiseOptions& o) {
   write.header_from = o.input;
   write.window = window;
   write_image(o.output, frame, write);
-  if (!o.preview.empty()) write_image(o.preview, frame, {});
+  if (!o.preview.empty()) write_image(o.preview, frame, preview);
   if (!o.quiet)
     print_status(fmt::format("tessera: denoised {} ({}x{}) in {:.2f} s; wrote {}{}", o.input, frame.width, frame.height,
                              seconds, o.output, o.preview.empty() ? "" : " and " + o.preview));

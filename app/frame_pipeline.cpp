@@ -129,19 +129,6 @@ void plan_sampling(const RenderOptions& o, RenderSettings& s) {
   s.time_limit = o.time_limit;
 }
 
-// The view transform, built once here so that a bad config fails before the render.
-DisplayParams plan_display(const RenderOptions& o) {
-  DisplayParams d{parse_view_transform(o.view_transform), o.ocio_config, o.ocio_display, o.ocio_view};
-  if (o.ocio_config.empty() && (!o.ocio_display.empty() || !o.ocio_view.empty()))
-    throw UsageError("--ocio-display and --ocio-view choose within --ocio-config, which is not given");
-  try {
-    check_display_transform(d);
-  } catch (const DisplayTransformError& e) {
-    throw UsageError(e.what());
-  }
-  return d;
-}
-
 bool same_environment(const EnvironmentParams& a, const EnvironmentParams& b) {
   return a.background == b.background && a.image_path == b.image_path && a.scale == b.scale &&
          a.rotate_degrees == b.rotate_degrees;
@@ -198,7 +185,7 @@ FramePlan plan_frame(const RenderOptions& o, const GltfLoadResult& loaded, const
   plan.animated = !loaded.playing.empty();
   plan.output = frame_output_path(o);
   plan.preview = o.preview;
-  plan.display = plan_display(o);
+  plan.display = plan_display(o.display);
   plan_image(o, scene, framing, plan);
   plan_sampling(o, plan.settings);
   AovSelection& aovs = plan.settings.aovs;
@@ -251,7 +238,7 @@ ImageWriteParams frame_write_params(const RenderOptions& o, const FramePlan& pla
   write.half = o.half;
   write.display = plan.display;
   write.window = settings.window;
-  write.exposure = o.exposure;
+  write.exposure = o.display.exposure;
   FrameMetadata& meta = write.metadata;
   meta.render_seconds = stats.seconds;
   meta.seed = settings.seed;

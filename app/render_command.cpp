@@ -64,22 +64,7 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
       ->group("Output");
   cmd->add_option("--comments", o.comments, "The EXR's standard comments attribute")
       ->group("Output");
-  cmd->add_option("--exposure", o.exposure, "Exposure in stops applied to non-EXR outputs (display formats: before the view transform; .hdr/.tif/.pfm: linear)")
-      ->check(CLI::Range(-64.0f, 64.0f))->capture_default_str()
-      ->group("Output");
-  cmd->add_option("--view-transform", o.view_transform,
-                  "Display formats (PNG, JPEG, ...): filmic (highlights roll off, through OpenColorIO) or standard "
-                  "(the clipped value, sRGB encoded). The EXR stays scene-linear")
-      ->check(CLI::IsMember(view_transform_names()))->capture_default_str()
-      ->group("Output");
-  cmd->add_option("--ocio-config", o.ocio_config,
-                  "Display formats: an OpenColorIO config whose view to use instead (from its scene_linear role)")
-      ->check(CLI::ExistingFile)
-      ->group("Output");
-  cmd->add_option("--ocio-display", o.ocio_display, "With --ocio-config: the display [default: the config's]")
-      ->group("Output");
-  cmd->add_option("--ocio-view", o.ocio_view, "With --ocio-config: the view [default: the display's default view]")
-      ->group("Output");
+  add_display_options(cmd, o.display, "Output");
   cmd->add_flag("-q,--quiet", o.quiet, "No progress and no summary (warnings and errors still print)")
       ->group("Output");
   cmd->add_option("--spp", o.spp, "Samples per pixel")->check(CLI::Range(1, 1 << 24))->capture_default_str()

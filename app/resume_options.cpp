@@ -5,6 +5,7 @@
 #include <functional>
 #include <map>
 #include <sstream>
+#include <type_traits>
 
 #include <fmt/format.h>
 
@@ -54,12 +55,24 @@ StoredOption option(const char* name, Role role, T RenderOptions::*field) {
 }
 
 // A path stored absolute, so that a resume from another directory finds the same file.
+std::string absolute_text(const std::string& path) {
+  return path.empty() ? "" : std::filesystem::absolute(path).lexically_normal().string();
+}
+
 StoredOption path_option(const char* name, Role role, std::string RenderOptions::*field) {
-  return {name, role,
-          [field](const RenderOptions& o) {
-            return (o.*field).empty() ? "" : std::filesystem::absolute(o.*field).lexically_normal().string();
-          },
+  return {name, role, [field](const RenderOptions& o) { return absolute_text(o.*field); },
           [field](RenderOptions& o, const std::string& t) { o.*field = t; }};
+}
+
+// The display options (RenderOptions::display); `path`: stored absolute.
+template <typename T>
+StoredOption display_option(const char* name, T DisplayOptions::*field, bool path = false) {
+  return {name, Role::output,
+          [field, path](const RenderOptions& o) {
+            if constexpr (std::is_same_v<T, std::string>) return path ? absolute_text(o.display.*field) : o.display.*field;
+            else return to_text(o.display.*field);
+          },
+          [field](RenderOptions& o, const std::string& t) { from_text(t, o.display.*field); }};
 }
 
 const std::vector<StoredOption>& stored_options() {
@@ -105,11 +118,11 @@ const std::vector<StoredOption>& stored_options() {
       option("--film-transparent", Role::pixels, &O::film_transparent),
       path_option("--preview", Role::output, &O::preview),
       option("--half", Role::output, &O::half),
-      option("--exposure", Role::output, &O::exposure),
-      option("--view-transform", Role::output, &O::view_transform),
-      path_option("--ocio-config", Role::output, &O::ocio_config),
-      option("--ocio-display", Role::output, &O::ocio_display),
-      option("--ocio-view", Role::output, &O::ocio_view),
+      display_option("--exposure", &DisplayOptions::exposure),
+      display_option("--view-transform", &DisplayOptions::view_transform),
+      display_option("--ocio-config", &DisplayOptions::ocio_config, true),
+      display_option("--ocio-display", &DisplayOptions::ocio_display),
+      display_option("--ocio-view", &DisplayOptions::ocio_view),
       option("--owner", Role::output, &O::owner),
       option("--comments", Role::output, &O::comments),
   };

@@ -13,14 +13,17 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <random>
 #include <string>
 #include <vector>
 
 #include <fmt/format.h>
+#include <OpenImageIO/imageio.h>
 
 #include "denoiser/denoise.h"
+#include "renderer/display_transform.h"
 #include "tests/test_support.h"
 
 namespace tessera {
@@ -176,6 +179,44 @@ TEST(DenoiseCli, IndependentSamplersHalvesAreNotCorrected) {
   const std::vector<float> got = interleave(read_exr(dir + "/out.exr"), {"R", "G", "B"});
   EXPECT_EQ(got, denoise(library_input(ch), independent).rgb);
   EXPECT_NE(got, denoise(library_input(ch), {}).rgb);
+}
+
+// The preview takes the display options render takes: its pixels are the denoised EXR's
+// through the chosen view and exposure, exactly (to_display_rgb8), and the default (filmic)
+// looks otherwise. Given without --preview they warn; a bad OCIO config fails before any work.
+std::vector<std::uint8_t> png_rgb(const std::string& path) {
+  auto in = OIIO::ImageInput::open(path);
+  const OIIO::ImageSpec spec = in->spec();
+  std::vector<std::uint8_t> px(static_cast<std::size_t>(spec.width) * spec.height * spec.nchannels);
+  in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, px.data());
+  std::vector<std::uint8_t> rgb;
+  for (std::size_t i = 0; i < px.size(); i += spec.nchannels) rgb.insert(rgb.end(), &px[i], &px[i] + 3);
+  return rgb;
+}
+
+TEST(DenoiseCli, PreviewTakesTheViewAndExposure) {
+  const std::string dir = test::make_temp_dir("denoise-preview");
+  Channels ch = synthetic_frame();
+  const std::string in = dir + "/in.exr";
+  write_exr(in, ch);
+  auto r = tessera("denoise '" + in + "' -o '" + dir + "/out.exr' --preview '" + dir +
+                   "/standard.png' --view-transform standard --exposure 1 -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::vector<float> denoised = interleave(read_exr(dir + "/out.exr"), {"R", "G", "B"});
+  EXPECT_EQ(png_rgb(dir + "/standard.png"), to_display_rgb8(denoised, 1.0f, {ViewTransform::standard}));
+  ASSERT_EQ(tessera("denoise '" + in + "' -o '" + dir + "/out2.exr' --preview '" + dir + "/filmic.png' -q").exit_code, 0);
+  EXPECT_EQ(png_rgb(dir + "/filmic.png"), to_display_rgb8(denoised, 0.0f, {ViewTransform::filmic}));
+  EXPECT_NE(png_rgb(dir + "/filmic.png"), png_rgb(dir + "/standard.png"));
+
+  r = tessera("denoise '" + in + "' -o '" + dir + "/out3.exr' --exposure 1 -q");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(r.err, "tessera: warning: --exposure: applies to --preview, which is not given\n");
+  const std::string config = dir + "/broken.ocio";
+  std::ofstream(config) << "not an OCIO config\n";
+  r = tessera("denoise '" + in + "' -o '" + dir + "/out4.exr' --preview '" + dir + "/p.png' --ocio-config '" + config + "'");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find(config), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir + "/out4.exr"));
 }
 
 // `render --denoise` and `tessera denoise` on a render with the same buffers are one
