@@ -26,7 +26,7 @@ void add_denoise_command(CLI::App& app, DenoiseOptions& o) {
                   "the header carried over")
       ->required();
   cmd->add_option("--preview", o.preview, "Also write the denoised frame as a display-referred image (sRGB), e.g. out.png");
-  add_display_options(cmd, o.display, "");
+  add_display_options(cmd, o.display, "Preview");
   cmd->add_option("--threads", o.threads, "Threads [default: all cores]")->check(CLI::Range(1, 1024));
   cmd->add_flag("-q,--quiet", o.quiet, "No summary (errors still print)");
 }

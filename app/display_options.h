@@ -17,7 +17,7 @@ struct DisplayOptions {
   std::string ocio_config, ocio_display, ocio_view;  // a studio's OCIO config and its view
 };
 
-// Adds the options to `cmd`, in `group` (empty: none).
+// Adds the options to `cmd`, in `group` (its --help heading; CLI11 hides an empty one).
 void add_display_options(CLI::App* cmd, DisplayOptions& o, const std::string& group);
 
 // The view transform, built once so that a bad config fails before any work. Throws
