@@ -223,8 +223,8 @@ vec3 trace_path_from(const RenderScene& scene, const PathTracerParams& params, R
     ShadingPoint sp = scene.materials.evaluate(s);
     PathVertex* vertex = nullptr;
     if (record) {
-      record->vertices.push_back({s.p, s.ns, s.material, throughput});
-      vertex = &record->vertices.back();
+      vertex = &record->vertices.emplace_back();
+      vertex->position = s.p, vertex->normal = s.ns, vertex->material = s.material, vertex->throughput = throughput;
     }
     if ((glm::dot(s.ng, ray.direction) < 0.0f || sp.double_sided) && sp.emission != vec3(0.0f)) {
       // Light sampling could have found this point too: weigh the two strategies.
