@@ -584,7 +584,7 @@ vec3 SceneGeometry::transmittance(const vec3& origin, const vec3& direction, flo
 
 const SceneGeometry::Placement& SceneGeometry::instance_placement(const HitRecord& hit, Placement& scratch) const {
   const InstanceRecord& inst = top_instances_[hit.instance];
-  scratch.mesh = &scene_.meshes[inst.mesh].primitives[hit.geom];
+  scratch.mesh = &hit_mesh(hit);
   scratch.to_world = inst.to_world;
   if (inst.moving) rtcGetGeometryTransform(inst.moving, hit.time, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &scratch.to_world[0][0]);
   scratch.normal_to_world = glm::transpose(glm::inverse(glm::mat3(inst.to_world)));
