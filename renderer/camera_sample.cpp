@@ -20,6 +20,31 @@ CameraSampler::CameraSampler(const RenderScene& scene, const RenderCamera& camer
   const FrameWindow& window = settings.window;
   inv_w_ = 1.0f / (window.cropped() ? window.full_width : settings.width);
   inv_h_ = 1.0f / (window.cropped() ? window.full_height : settings.height);
+  if (settings.cull_camera_rays && !timed_ && !has_lens_) {
+    CameraCoverageParams cp;
+    cp.full_width = window.cropped() ? window.full_width : settings.width;
+    cp.full_height = window.cropped() ? window.full_height : settings.height;
+    cp.x0 = window.x, cp.y0 = window.y, cp.width = settings.width, cp.height = settings.height;
+    cp.filter_radius = std::max(0.5f, 0.5f * filter_width(settings.filter));
+    coverage_ = CameraCoverage(camera, *scene.geometry, cp);
+  }
+  uniform_background_ = !scene.environment.has_image();
+  PathCounters once;
+  background_ = camera_ray_escaped(scene, params_, Ray{vec3(0.0f), vec3(0.0f, 0.0f, -1.0f)}, once);  // any ray, when uniform
+  background_dropped_ = once.dropped > 0;
+}
+
+// A pixel whose rays cannot hit anything, under a uniform background: each sample is what
+// camera_ray_escaped gives any ray, with no ray made (the camera is well formed: its rays are
+// finite, as coverage_ checks).
+bool CameraSampler::background_alone(int fx, int fy, int n, PathCounters& counters, CameraSampleResult* out) const {
+  if (!uniform_background_ || coverage_.may_hit(fx, fy)) return false;
+  for (int k = 0; k < n; ++k) {
+    out[k] = CameraSampleResult{};
+    out[k].radiance = background_;
+  }
+  if (background_dropped_) counters.dropped += n;
+  return true;
 }
 
 // The sample's point on the film (from the filter's draw `u`, the sampler's first), lens
@@ -40,6 +65,8 @@ float CameraSampler::depth(const Ray& ray, float distance) const {
 
 void CameraSampler::sample(int fx, int fy, int s0, int n, PathCounters& counters, CameraSampleResult* out,
                            PathRecord* const* records) const {
+  if (!records && background_alone(fx, fy, n, counters, out)) return;
+  const bool traced = records || coverage_.may_hit(fx, fy);  // else every ray sees the background
   std::optional<Sampler> rng[kGroup];
   Ray rays[kGroup];
   int lane[kGroup];  // sample k's ray in the packet; -1: the camera made no finite ray
@@ -65,7 +92,7 @@ void CameraSampler::sample(int fx, int fy, int s0, int n, PathCounters& counters
     rays[lanes++] = ray;
   }
   ClosestHit hits[kGroup];
-  scene_.geometry->intersect_packet(rays, lanes, hits);
+  if (traced) scene_.geometry->intersect_packet(rays, lanes, hits);
   for (int l = 0; l < lanes; ++l)
     if (hits[l].found) scene_.geometry->prefetch_triangle(hits[l].hit);
   for (int l = 0; l < lanes; ++l)
@@ -75,9 +102,15 @@ void CameraSampler::sample(int fx, int fy, int s0, int n, PathCounters& counters
     const Ray& ray = rays[lane[k]];
     CameraSampleResult& r = out[k];
     PathRecord* record = records ? records[k] : nullptr;
-    r.radiance = hits[lane[k]].found || record
-                     ? trace_path_from(scene_, params_, ray, &hits[lane[k]], *rng[k], r.first, counters, record)
-                     : camera_ray_escaped(scene_, params_, ray, counters);
+    if (hits[lane[k]].found || record) {
+      r.radiance = trace_path_from(scene_, params_, ray, &hits[lane[k]], *rng[k], r.first, counters, record);
+    } else if (traced) {
+      r.radiance = camera_ray_escaped(scene_, params_, ray, counters);
+    } else {
+      PathCounters untraced;  // of a ray not traced, only a dropped sample counts
+      r.radiance = camera_ray_escaped(scene_, params_, ray, untraced);
+      counters.dropped += untraced.dropped;
+    }
     r.depth = depth(ray, r.first.distance);
   }
 }

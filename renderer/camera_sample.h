@@ -11,6 +11,7 @@
 #include <algorithm>
 
 #include "renderer/camera.h"
+#include "renderer/camera_coverage.h"
 #include "renderer/integrator/path_tracer.h"
 #include "renderer/pixel_filter.h"
 #include "renderer/render_scene.h"
@@ -53,6 +54,7 @@ class CameraSampler {
  private:
   void camera_sample_point(int fx, int fy, const vec2& u, Sampler& rng, vec2& film, vec2& lens, float& time) const;
   float depth(const Ray& ray, float distance) const;
+  bool background_alone(int fx, int fy, int n, PathCounters& counters, CameraSampleResult* out) const;
 
   const RenderScene& scene_;
   const RenderCamera& camera_;
@@ -62,6 +64,12 @@ class CameraSampler {
   vec3 forward_;
   bool camera_moves_, timed_, has_lens_;
   float inv_w_, inv_h_;
+  // Pixels whose camera rays cannot hit anything (camera_coverage.h) see the background: their
+  // rays are not traced, and under a uniform background not even made.
+  CameraCoverage coverage_;
+  bool uniform_background_;
+  vec3 background_;  // what camera_ray_escaped returns there
+  bool background_dropped_;  // it is not finite: each such sample is dropped
 };
 
 }  // namespace tessera

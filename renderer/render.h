@@ -45,6 +45,9 @@ struct RenderSettings {
   std::function<void(const Film&, const RenderStats&)> on_checkpoint;
   LightSampling light_sampling = LightSampling::Mis;
   float clamp = 0.0f;  // > 0: clamp each sample's luminance (biased, off by default)
+  // Camera rays that provably miss everything are not traced (renderer/camera_coverage.h);
+  // false traces every one, the same image: what the tests compare with.
+  bool cull_camera_rays = true;
   AdaptiveSampling adaptive;  // off by default: every pixel gets spp
   // A distributed render: the ranks share each wave's tiles (a global counter, or a block
   // each) and exchange what they rendered after it, so every rank ends each wave with the

@@ -1,0 +1,145 @@
+#include "renderer/camera_coverage.h"
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+
+namespace tessera {
+namespace {
+
+Bounds3 position_bounds(const TriangleMesh& mesh) {
+  Bounds3 b;
+  for (const vec3& p : mesh.positions) b.extend(p);
+  return b;
+}
+
+Bounds3 transformed(const Bounds3& b, const glm::mat4& m) {
+  Bounds3 out;
+  for (int i = 0; i < 8; ++i)
+    out.extend(vec3(m * glm::vec4(i & 1 ? b.hi.x : b.lo.x, i & 2 ? b.hi.y : b.lo.y, i & 4 ? b.hi.z : b.lo.z, 1.0f)));
+  return out;
+}
+
+// The world box of every triangle list where it stands (a mesh's own box computed once).
+std::vector<Bounds3> placed_bounds(const SceneGeometry& geometry) {
+  std::unordered_map<const TriangleMesh*, Bounds3> own;
+  std::vector<Bounds3> out;
+  for (const SceneGeometry::PlacedPrimitive& p : geometry.placed_primitives()) {
+    auto it = own.find(p.mesh);
+    if (it == own.end()) it = own.emplace(p.mesh, position_bounds(*p.mesh)).first;
+    out.push_back(p.to_world == glm::mat4(1.0f) ? it->second : transformed(it->second, p.to_world));
+  }
+  return out;
+}
+
+// Rays from such a camera are finite everywhere on the film (what skipping them assumes).
+bool well_formed(const RenderCamera& c) {
+  const glm::mat3 m(c.camera_to_world);
+  for (int i = 0; i < 4; ++i)
+    if (!all_finite(c.camera_to_world[i])) return false;
+  const float det = glm::determinant(m);
+  return std::isfinite(det) && det != 0.0f && std::isfinite(c.aspect) && c.aspect > 0.0f &&
+         (c.projection == Camera::Projection::Perspective ? std::isfinite(c.tan_half_fov_y) && c.tan_half_fov_y > 0.0f
+                                                          : std::isfinite(c.half_height) && c.half_height > 0.0f);
+}
+
+double distance_to_box(const glm::dvec3& p, const Bounds3& b) {
+  const glm::dvec3 d = glm::max(glm::max(glm::dvec3(b.lo) - p, p - glm::dvec3(b.hi)), glm::dvec3(0.0));
+  return glm::length(d);
+}
+
+}  // namespace
+
+CameraCoverage::CameraCoverage(const RenderCamera& camera, const SceneGeometry& geometry,
+                               const CameraCoverageParams& params) {
+  if (camera.moves() || camera.lens_radius > 0.0f || geometry.moves() || !well_formed(camera)) return;
+  all_ = false;
+  x0_ = params.x0, y0_ = params.y0, width_ = params.width, height_ = params.height;
+  covered_.assign(static_cast<std::size_t>(width_) * height_, 0);
+  const glm::dmat4 world_to_camera = glm::inverse(glm::dmat4(camera.camera_to_world));
+  for (const Bounds3& box : placed_bounds(geometry)) {
+    if (box.empty()) continue;
+    cover(camera, world_to_camera, box, params);
+    if (all_) break;
+  }
+  if (all_) covered_.clear();
+}
+
+// Marks the pixels whose rays may meet `box`: its part in front of the camera projected.
+void CameraCoverage::cover(const RenderCamera& camera, const glm::dmat4& world_to_camera, const Bounds3& box,
+                           const CameraCoverageParams& params) {
+  // Widened for rounding: Embree's hits and generate_ray's directions are float.
+  const glm::dvec3 lo(box.lo), hi(box.hi);
+  const double slack = 1e-5 * (glm::length(hi - lo) + std::max(glm::length(lo), glm::length(hi)));
+  glm::dvec3 corner[8];
+  for (int i = 0; i < 8; ++i) {
+    const glm::dvec3 w(i & 1 ? hi.x + slack : lo.x - slack, i & 2 ? hi.y + slack : lo.y - slack,
+                       i & 4 ? hi.z + slack : lo.z - slack);
+    corner[i] = glm::dvec3(world_to_camera * glm::dvec4(w, 1.0));
+  }
+  const bool perspective = camera.projection == Camera::Projection::Perspective;
+  const double sx = perspective ? double(camera.tan_half_fov_y) * camera.aspect : double(camera.half_height) * camera.aspect;
+  const double sy = perspective ? double(camera.tan_half_fov_y) : double(camera.half_height);
+  // A perspective ray meets a point at depth -z = |p| cos(angle to the axis); within the film
+  // (and a filter's reach beyond it) that angle is bounded, so the box's points such rays can
+  // reach lie deeper than `cut`: the box is cut there and the rest projected.
+  double cut = 0.0;
+  if (perspective) {
+    const glm::dvec3 eye(camera.camera_to_world[3]);
+    const Bounds3 wide{vec3(lo - slack), vec3(hi + slack)};
+    const double kx = 1.0 + 2.0 * (params.filter_radius + 2.0) / params.full_width;
+    const double ky = 1.0 + 2.0 * (params.filter_radius + 2.0) / params.full_height;
+    const double cos_max = 1.0 / std::sqrt(1.0 + (kx * sx) * (kx * sx) + (ky * sy) * (ky * sy));
+    cut = 0.5 * distance_to_box(eye, wide) * cos_max;
+    if (!(cut > 0.0)) {  // the camera is in or at the box
+      all_ = true;
+      return;
+    }
+  }
+  double x_lo = HUGE_VAL, x_hi = -HUGE_VAL, y_lo = HUGE_VAL, y_hi = -HUGE_VAL;
+  auto project = [&](const glm::dvec3& p) {
+    const double depth = perspective ? -p.z : 1.0;
+    const double x = (p.x / (depth * sx) + 1.0) * 0.5 * params.full_width;
+    const double y = (1.0 - p.y / (depth * sy)) * 0.5 * params.full_height;
+    x_lo = std::min(x_lo, x), x_hi = std::max(x_hi, x), y_lo = std::min(y_lo, y), y_hi = std::max(y_hi, y);
+  };
+  const double z_max = perspective ? -cut : 0.0;  // orthographic rays start on z = 0 and go to -z
+  for (int i = 0; i < 8; ++i) {
+    if (corner[i].z <= z_max) project(corner[i]);
+    for (int axis = 1; axis < 8; axis <<= 1) {  // the box's edges from this corner that cross z_max
+      const int j = i | axis;
+      if (j == i || (corner[i].z <= z_max) == (corner[j].z <= z_max)) continue;
+      const double t = (z_max - corner[i].z) / (corner[j].z - corner[i].z);
+      project(corner[i] + t * (corner[j] - corner[i]));
+    }
+  }
+  if (x_lo > x_hi) return;  // all behind the camera
+  if (!std::isfinite(x_lo) || !std::isfinite(x_hi) || !std::isfinite(y_lo) || !std::isfinite(y_hi)) {
+    all_ = true;
+    return;
+  }
+  cover_rect(x_lo, x_hi, y_lo, y_hi, params);
+}
+
+// Pixel f's samples land within filter_radius of its centre f + 0.5; one pixel more of margin.
+void CameraCoverage::cover_rect(double x_lo, double x_hi, double y_lo, double y_hi, const CameraCoverageParams& params) {
+  const double reach = params.filter_radius + 1.0;
+  auto first = [&](double lo, int begin, int size) {
+    return static_cast<int>(std::clamp(std::ceil(lo - reach - 0.5), double(begin), double(begin + size)));
+  };
+  auto last = [&](double hi, int begin, int size) {
+    return static_cast<int>(std::clamp(std::floor(hi + reach - 0.5), double(begin - 1), double(begin + size - 1)));
+  };
+  const int fx0 = first(x_lo, x0_, width_), fx1 = last(x_hi, x0_, width_);
+  const int fy0 = first(y_lo, y0_, height_), fy1 = last(y_hi, y0_, height_);
+  for (int y = fy0; y <= fy1; ++y)
+    std::fill_n(covered_.begin() + static_cast<std::ptrdiff_t>(y - y0_) * width_ + (fx0 - x0_), std::max(0, fx1 - fx0 + 1),
+                std::uint8_t{1});
+}
+
+std::uint64_t CameraCoverage::empty_pixels() const {
+  if (all_) return 0;
+  return static_cast<std::uint64_t>(std::count(covered_.begin(), covered_.end(), std::uint8_t{0}));
+}
+
+}  // namespace tessera

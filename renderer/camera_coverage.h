@@ -1,0 +1,51 @@
+// Which pixels' camera rays can hit anything at all. Each triangle list's world bounding box,
+// projected through a still pinhole (or orthographic) camera, covers every film point whose
+// ray could reach it; a pixel whose filter footprint, widened by a pixel, meets none of those
+// rectangles sees only the background, so its camera rays need no traversal: the answer is
+// known (the image is the same bit for bit, tests/camera_coverage_test.cpp). A product shot on
+// an empty background spends most of its camera samples there: 86% of MetalRoughSpheres'.
+// Conservative by construction: a box reaching within a small distance of the camera's
+// position, a lens, a moving camera or scene, a non-finite camera: every pixel may hit.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "renderer/camera.h"
+#include "renderer/scene_geometry.h"
+
+namespace tessera {
+
+struct CameraCoverageParams {
+  int full_width = 0, full_height = 0;  // the frame's pixels (a crop's frame, not the crop)
+  int x0 = 0, y0 = 0, width = 0, height = 0;  // the pixels that will be asked about
+  float filter_radius = 0.5f;  // how far from a pixel's centre its samples can land, in pixels
+};
+
+class CameraCoverage {
+ public:
+  CameraCoverage() = default;  // every pixel may hit
+  // The coverage of the scene's triangles at the shutter's opening (the caller checks that
+  // nothing moves and that the camera has no lens).
+  CameraCoverage(const RenderCamera& camera, const SceneGeometry& geometry, const CameraCoverageParams& params);
+  // Whether a camera ray of a sample of frame pixel (fx, fy) may hit a triangle.
+  bool may_hit(int fx, int fy) const {
+    if (all_) return true;
+    const int x = fx - x0_, y = fy - y0_;
+    if (x < 0 || y < 0 || x >= width_ || y >= height_) return true;
+    return covered_[static_cast<std::size_t>(y) * width_ + x] != 0;
+  }
+  // The pixels asked about that cannot hit anything.
+  std::uint64_t empty_pixels() const;
+
+ private:
+  void cover(const RenderCamera& camera, const glm::dmat4& world_to_camera, const Bounds3& box,
+             const CameraCoverageParams& params);
+  void cover_rect(double x_lo, double x_hi, double y_lo, double y_hi, const CameraCoverageParams& params);
+
+  bool all_ = true;
+  int x0_ = 0, y0_ = 0, width_ = 0, height_ = 0;
+  std::vector<std::uint8_t> covered_;
+};
+
+}  // namespace tessera

@@ -1,0 +1,164 @@
+// CameraCoverage: the pixels it leaves out really see nothing (checked by tracing dense rays
+// over each one's whole filter footprint and margin), it leaves out what it should (the sky
+// above a floor that runs under and behind the camera), it gives up where it must (the camera
+// inside the geometry's box), and a render that skips those pixels' rays is the same bit for
+// bit as one that traces them all, for every camera, filter, crop and background it applies to.
+#include <gtest/gtest.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "renderer/camera_coverage.h"
+#include "renderer/render.h"
+#include "tests/same_bits.h"
+#include "tests/scene_builders.h"
+
+namespace tessera {
+namespace {
+
+// A small sphere and a tilted quad over a floor from z = -20 to z = +20 (under and behind
+// the camera at z = 5), and a quad behind the camera facing it.
+SceneDescription product_shot() {
+  SceneDescription d;
+  const int grey = test::add_material(d, test::diffuse(vec3(0.6f)));
+  test::add_mesh(d, test::make_sphere({0.4f, 0.2f, 0}, 0.5f, 2, grey));
+  test::add_mesh(d, test::make_quad({-1.2f, 0.6f, -1}, {0.3f, 0.1f, 0}, {0, 0.3f, 0.2f}, grey));
+  test::add_mesh(d, test::make_quad({0, -1, 0}, {20, 0, 0}, {0, 0, -20}, grey));
+  test::add_mesh(d, test::make_quad({0, 0, 8}, {1, 0, 0}, {0, 1, 0}, grey));
+  return d;
+}
+
+RenderScene& shot_scene() {
+  static RenderScene* scene = [] {
+    EnvironmentParams env;
+    env.background = vec3(1.0f);
+    return new RenderScene(product_shot(), env);
+  }();
+  return *scene;
+}
+
+CameraCoverageParams whole_frame(int w, int h, float radius) {
+  CameraCoverageParams p;
+  p.full_width = p.width = w;
+  p.full_height = p.height = h;
+  p.filter_radius = radius;
+  return p;
+}
+
+// Every pixel left out, traced for real: a 9x9 grid of rays over its filter footprint and
+// the margin around it hits nothing. Returns the number of pixels left out.
+int expect_left_out_pixels_see_nothing(const RenderScene& scene, const RenderCamera& cam, const CameraCoverageParams& p) {
+  const CameraCoverage coverage(cam, *scene.geometry, p);
+  int left_out = 0, wrong = 0;
+  for (int y = p.y0; y < p.y0 + p.height; ++y)
+    for (int x = p.x0; x < p.x0 + p.width; ++x) {
+      if (coverage.may_hit(x, y)) continue;
+      ++left_out;
+      const float reach = p.filter_radius + 1.0f;
+      for (int i = 0; i < 9; ++i)
+        for (int j = 0; j < 9; ++j) {
+          const vec2 at(x + 0.5f - reach + 2.0f * reach * i / 8.0f, y + 0.5f - reach + 2.0f * reach * j / 8.0f);
+          HitRecord hit;
+          const Ray ray = cam.generate_ray({at.x / p.full_width, at.y / p.full_height}, vec2(0.5f));
+          if (scene.geometry->intersect(ray, hit) && wrong++ == 0)
+            ADD_FAILURE() << "pixel " << x << "," << y << " left out, but a ray hits";
+        }
+    }
+  EXPECT_EQ(wrong, 0);
+  EXPECT_EQ(coverage.empty_pixels(), static_cast<std::uint64_t>(left_out));
+  return left_out;
+}
+
+TEST(CameraCoverage, PixelsLeftOutSeeNothingAndTheSkyIsLeftOut) {
+  const int w = 80, h = 60;
+  const RenderCamera cam = make_camera(test::look_at({0, 0, 5}, {0, 0, 0}, 40.0f), w, h, {});
+  const int left_out = expect_left_out_pixels_see_nothing(shot_scene(), cam, whole_frame(w, h, 0.75f));
+  // The floor's horizon is the middle row (the camera looks level from y = 0, the floor at
+  // y = -1 reaches 15 units beyond the target): the upper half is sky but for the sphere's
+  // and the quad's boxes, whose projections take less than a third of it.
+  EXPECT_GT(left_out, w * h / 2 * 2 / 3);
+  EXPECT_LT(left_out, w * h / 2);
+}
+
+TEST(CameraCoverage, WideFiltersCropsAndOrthographicCamerasLeaveOutOnlyEmptyPixels) {
+  const int w = 64, h = 48;
+  const RenderCamera tilted = make_camera(test::look_at({3, 1.5f, 4}, {0, 0, 0}, 30.0f), w, h, {});
+  EXPECT_GT(expect_left_out_pixels_see_nothing(shot_scene(), tilted, whole_frame(w, h, 2.0f)), 0);
+  CameraCoverageParams crop = whole_frame(w, h, 0.5f);
+  crop.x0 = 10, crop.y0 = 2, crop.width = 40, crop.height = 8;
+  EXPECT_GT(expect_left_out_pixels_see_nothing(shot_scene(), tilted, crop), 0);
+  Camera ortho = test::look_at({0, 0.5f, 5}, {0, 0.5f, 0}, 40.0f);
+  ortho.projection = Camera::Projection::Orthographic;
+  ortho.xmag = ortho.ymag = 2.0f;
+  EXPECT_GT(expect_left_out_pixels_see_nothing(shot_scene(), make_camera(ortho, w, h, {}), whole_frame(w, h, 0.75f)), 0);
+}
+
+TEST(CameraCoverage, NothingIsLeftOutWhereItCannotBeKnown) {
+  const int w = 32, h = 24;
+  // Inside the floor's box (it is flat, so widened only by rounding's slack): nothing is known.
+  const RenderCamera on_floor = make_camera(test::look_at({0, -1, 5}, {0, 2, 0}, 40.0f), w, h, {});
+  EXPECT_EQ(CameraCoverage(on_floor, *shot_scene().geometry, whole_frame(w, h, 0.5f)).empty_pixels(), 0u);
+  CameraParams lens;
+  lens.aperture = 0.2f;
+  lens.focus_distance = 5.0f;
+  const RenderCamera thin_lens = make_camera(test::look_at({0, 0, 5}, {0, 0, 0}, 40.0f), w, h, lens);
+  EXPECT_EQ(CameraCoverage(thin_lens, *shot_scene().geometry, whole_frame(w, h, 0.5f)).empty_pixels(), 0u);
+}
+
+RenderResult render(const RenderScene& scene, const Camera& camera, RenderSettings s, bool cull) {
+  s.cull_camera_rays = cull;
+  const int fw = s.window.cropped() ? s.window.full_width : s.width, fh = s.window.cropped() ? s.window.full_height : s.height;
+  return render_frame(scene, make_camera(camera, fw, fh, {}), s);
+}
+
+void expect_same_render_with_fewer_rays(const RenderScene& scene, const Camera& camera, const RenderSettings& s) {
+  SCOPED_TRACE(testing::Message() << s.width << "x" << s.height << " filter " << describe(s.filter));
+  const RenderResult all = render(scene, camera, s, false), culled = render(scene, camera, s, true);
+  test::expect_same_image(all.image, culled.image);
+  EXPECT_LT(culled.stats.rays, all.stats.rays);
+}
+
+RenderSettings small_settings() {
+  RenderSettings s;
+  s.width = 40, s.height = 30, s.spp = 20, s.threads = 2, s.seed = 5;
+  s.aovs = {true, true, true, true};
+  return s;
+}
+
+TEST(CameraCoverage, RenderIsTheSameBitForBitWithAndWithoutCulling) {
+  const Camera level = test::look_at({0, 0, 5}, {0, 0, 0}, 40.0f);
+  expect_same_render_with_fewer_rays(shot_scene(), level, small_settings());
+  RenderSettings gaussian = small_settings();
+  gaussian.filter = {PixelFilterKind::gaussian, 3.0f};
+  gaussian.sampler = SamplerKind::independent;
+  expect_same_render_with_fewer_rays(shot_scene(), level, gaussian);
+  RenderSettings crop = small_settings();
+  crop.width = 40, crop.height = 8;
+  crop.window = {10, 2, 64, 48};
+  crop.filter = {PixelFilterKind::box, 1.0f};
+  expect_same_render_with_fewer_rays(shot_scene(), test::look_at({3, 1.5f, 4}, {0, 0, 0}, 30.0f), crop);
+  RenderSettings transparent = small_settings();
+  transparent.aovs.coverage = true;
+  Camera ortho = level;
+  ortho.projection = Camera::Projection::Orthographic;
+  ortho.xmag = ortho.ymag = 2.0f;
+  expect_same_render_with_fewer_rays(shot_scene(), ortho, transparent);
+}
+
+TEST(CameraCoverage, EnvironmentImageAndNonFiniteBackgroundRenderTheSame) {
+  EnvironmentParams env;
+  env.image_path = std::string(TESSERA_SOURCE_DIR) + "/scenes/env/spruit_sunrise_1k.hdr";
+  env.rotate_degrees = 30.0f;
+  const RenderScene lit(product_shot(), env);
+  expect_same_render_with_fewer_rays(lit, test::look_at({0, 0, 5}, {0, 0, 0}, 40.0f), small_settings());
+  EnvironmentParams bad;
+  bad.background = vec3(std::numeric_limits<float>::infinity());
+  const RenderScene broken(product_shot(), bad);
+  const Camera level = test::look_at({0, 0, 5}, {0, 0, 0}, 40.0f);
+  const RenderResult all = render(broken, level, small_settings(), false), culled = render(broken, level, small_settings(), true);
+  test::expect_same_image(all.image, culled.image);
+  EXPECT_EQ(all.stats.dropped_samples, culled.stats.dropped_samples);
+  EXPECT_GT(culled.stats.dropped_samples, 0u);
+}
+
+}  // namespace
+}  // namespace tessera
