@@ -8,6 +8,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "renderer/camera_coverage.h"
 #include "renderer/integrator/bsdf.h"
 #include "renderer/sampler.h"
 
@@ -47,16 +48,26 @@ TraversalCeilingResult trace_traversal_ceiling(const RenderScene& scene, const R
                                                const TraversalCeilingParams& p) {
   std::atomic<std::uint64_t> rays{0};
   const auto start = std::chrono::steady_clock::now();
+  CameraCoverage coverage;
+  if (p.cull_camera_rays) {
+    CameraCoverageParams cp;
+    cp.full_width = cp.width = p.width;
+    cp.full_height = cp.height = p.height;
+    cp.filter_radius = p.filter_radius;
+    coverage = CameraCoverage(camera, *scene.geometry, cp);
+  }
   tbb::task_arena arena(p.threads > 0 ? p.threads : tbb::task_arena::automatic);
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range2d<int>(0, p.height, 32, 0, p.width, 32), [&](const tbb::blocked_range2d<int>& r) {
       std::uint64_t local = 0;
       for (int y = r.rows().begin(); y < r.rows().end(); ++y)
-        for (int x = r.cols().begin(); x < r.cols().end(); ++x) local += trace_pixel(scene, camera, p, x, y);
+        for (int x = r.cols().begin(); x < r.cols().end(); ++x)
+          if (coverage.may_hit(x, y)) local += trace_pixel(scene, camera, p, x, y);
       rays += local;
     });
   });
-  return {rays.load(), std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()};
+  return {rays.load(), std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+          coverage.empty_pixels() * static_cast<std::uint64_t>(p.spp)};
 }
 
 }  // namespace tessera

@@ -2,7 +2,8 @@
 // rays its definition says. Inside a closed sphere every path bounces until its limit; with
 // nothing in the scene each camera ray is the whole path; with the camera outside a sphere
 // that fills part of the view, every path that enters the sphere's image and bounces off its
-// convex outside leaves after one bounce.
+// convex outside leaves after one bounce. Camera rays culled (their pixels' rays provably miss)
+// are exactly the rays a pass that traces every camera ray spends on those pixels.
 #include <gtest/gtest.h>
 
 #include "renderer/render_scene.h"
@@ -27,10 +28,32 @@ TEST(TraversalCeiling, AClosedSphereKeepsEveryPathToItsBounceLimit) {
   EXPECT_GT(r.seconds, 0.0);
 }
 
-TEST(TraversalCeiling, AnEmptySceneTracesOnlyTheCameraRays) {
+TEST(TraversalCeiling, AnEmptySceneTracesOnlyTheCameraRaysOrNoneWhenCulled) {
   const RenderScene rs(SceneDescription{}, EnvironmentParams{});
-  const TraversalCeilingResult r = trace_traversal_ceiling(rs, camera_at({0, 0, 1}, {0, 0, 0}, 60, 8, 8), {8, 8, 4, 8, 1});
+  TraversalCeilingParams p{8, 8, 4, 8, 1};
+  p.cull_camera_rays = false;
+  const TraversalCeilingResult r = trace_traversal_ceiling(rs, camera_at({0, 0, 1}, {0, 0, 0}, 60, 8, 8), p);
   EXPECT_EQ(r.rays, 8u * 8u * 4u);
+  EXPECT_EQ(r.culled_camera_rays, 0u);
+  p.cull_camera_rays = true;
+  const TraversalCeilingResult culled = trace_traversal_ceiling(rs, camera_at({0, 0, 1}, {0, 0, 0}, 60, 8, 8), p);
+  EXPECT_EQ(culled.rays, 0u);
+  EXPECT_EQ(culled.culled_camera_rays, 8u * 8u * 4u);
+}
+
+TEST(TraversalCeiling, CulledCameraRaysAreTheRaysTheirPixelsWouldTrace) {
+  SceneDescription scene;
+  const int m = test::add_material(scene, test::diffuse(glm::vec3(0.5f)));
+  test::add_mesh(scene, test::make_sphere(glm::vec3(0.0f), 1.0f, 3, m));
+  const RenderScene rs(std::move(scene), EnvironmentParams{});
+  const RenderCamera cam = camera_at({0, 0, 6}, {0, 0, 0}, 50, 32, 24);
+  TraversalCeilingParams p{32, 24, 4, 8, 2};
+  p.cull_camera_rays = false;
+  const TraversalCeilingResult all = trace_traversal_ceiling(rs, cam, p);
+  p.cull_camera_rays = true;
+  const TraversalCeilingResult culled = trace_traversal_ceiling(rs, cam, p);
+  EXPECT_GT(culled.culled_camera_rays, 32u * 24u * 4u / 2);  // the sphere takes a fifth of the view
+  EXPECT_EQ(all.rays - culled.rays, culled.culled_camera_rays);
 }
 
 TEST(TraversalCeiling, AConvexObjectIsLeftAfterOneBounce) {
