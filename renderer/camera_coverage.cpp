@@ -21,10 +21,10 @@ Bounds3 transformed(const Bounds3& b, const glm::mat4& m) {
 }
 
 // The world box of every triangle list where it stands (a mesh's own box computed once).
-std::vector<Bounds3> placed_bounds(const SceneGeometry& geometry) {
+std::vector<Bounds3> placed_bounds(const std::vector<SceneGeometry::PlacedPrimitive>& placed) {
   std::unordered_map<const TriangleMesh*, Bounds3> own;
   std::vector<Bounds3> out;
-  for (const SceneGeometry::PlacedPrimitive& p : geometry.placed_primitives()) {
+  for (const SceneGeometry::PlacedPrimitive& p : placed) {
     auto it = own.find(p.mesh);
     if (it == own.end()) it = own.emplace(p.mesh, position_bounds(*p.mesh)).first;
     out.push_back(p.to_world == glm::mat4(1.0f) ? it->second : transformed(it->second, p.to_world));
@@ -57,17 +57,19 @@ CameraCoverage::CameraCoverage(const RenderCamera& camera, const SceneGeometry& 
   x0_ = params.x0, y0_ = params.y0, width_ = params.width, height_ = params.height;
   covered_.assign(static_cast<std::size_t>(width_) * height_, 0);
   const glm::dmat4 world_to_camera = glm::inverse(glm::dmat4(camera.camera_to_world));
-  for (const Bounds3& box : placed_bounds(geometry)) {
-    if (box.empty()) continue;
-    cover(camera, world_to_camera, box, params);
+  for (const Bounds3& box : placed_bounds(geometry.placed_primitives())) {
+    Rect r;
+    if (project(camera, world_to_camera, box, params, r)) cover_rect(r, params);
     if (all_) break;
   }
   if (all_) covered_.clear();
 }
 
-// Marks the pixels whose rays may meet `box`: its part in front of the camera projected.
-void CameraCoverage::cover(const RenderCamera& camera, const glm::dmat4& world_to_camera, const Bounds3& box,
-                           const CameraCoverageParams& params) {
+// The film rectangle (in pixels) of `box`'s part in front of the camera; false when none of
+// it is. A box within the camera's reach sets all_ (and returns false).
+bool CameraCoverage::project(const RenderCamera& camera, const glm::dmat4& world_to_camera, const Bounds3& box,
+                             const CameraCoverageParams& params, Rect& rect) {
+  if (box.empty()) return false;
   // Widened for rounding: Embree's hits and generate_ray's directions are float.
   const glm::dvec3 lo(box.lo), hi(box.hi);
   const double slack = 1e-5 * (glm::length(hi - lo) + std::max(glm::length(lo), glm::length(hi)));
@@ -93,7 +95,7 @@ void CameraCoverage::cover(const RenderCamera& camera, const glm::dmat4& world_t
     cut = 0.5 * distance_to_box(eye, wide) * cos_max;
     if (!(cut > 0.0)) {  // the camera is in or at the box
       all_ = true;
-      return;
+      return false;
     }
   }
   double x_lo = HUGE_VAL, x_hi = -HUGE_VAL, y_lo = HUGE_VAL, y_hi = -HUGE_VAL;
@@ -113,25 +115,28 @@ void CameraCoverage::cover(const RenderCamera& camera, const glm::dmat4& world_t
       project(corner[i] + t * (corner[j] - corner[i]));
     }
   }
-  if (x_lo > x_hi) return;  // all behind the camera
+  if (x_lo > x_hi) return false;  // all behind the camera
   if (!std::isfinite(x_lo) || !std::isfinite(x_hi) || !std::isfinite(y_lo) || !std::isfinite(y_hi)) {
     all_ = true;
-    return;
+    return false;
   }
-  cover_rect(x_lo, x_hi, y_lo, y_hi, params);
+  rect = {x_lo, x_hi, y_lo, y_hi};
+  return true;
 }
 
-// Pixel f's samples land within filter_radius of its centre f + 0.5; one pixel more of margin.
-void CameraCoverage::cover_rect(double x_lo, double x_hi, double y_lo, double y_hi, const CameraCoverageParams& params) {
-  const double reach = params.filter_radius + 1.0;
+// Pixel f's samples land within filter_radius of its centre f + 0.5; kMargin more for the
+// rounding of generate_ray's float directions (~1e-4 pixels; Embree's own rounding is in the
+// boxes' slack).
+void CameraCoverage::cover_rect(const Rect& r, const CameraCoverageParams& params) {
+  const double reach = params.filter_radius + kMargin;
   auto first = [&](double lo, int begin, int size) {
     return static_cast<int>(std::clamp(std::ceil(lo - reach - 0.5), double(begin), double(begin + size)));
   };
   auto last = [&](double hi, int begin, int size) {
     return static_cast<int>(std::clamp(std::floor(hi + reach - 0.5), double(begin - 1), double(begin + size - 1)));
   };
-  const int fx0 = first(x_lo, x0_, width_), fx1 = last(x_hi, x0_, width_);
-  const int fy0 = first(y_lo, y0_, height_), fy1 = last(y_hi, y0_, height_);
+  const int fx0 = first(r.x_lo, x0_, width_), fx1 = last(r.x_hi, x0_, width_);
+  const int fy0 = first(r.y_lo, y0_, height_), fy1 = last(r.y_hi, y0_, height_);
   for (int y = fy0; y <= fy1; ++y)
     std::fill_n(covered_.begin() + static_cast<std::ptrdiff_t>(y - y0_) * width_ + (fx0 - x0_), std::max(0, fx1 - fx0 + 1),
                 std::uint8_t{1});

@@ -44,8 +44,8 @@ CameraCoverageParams whole_frame(int w, int h, float radius) {
   return p;
 }
 
-// Every pixel left out, traced for real: a 9x9 grid of rays over its filter footprint and
-// the margin around it hits nothing. Returns the number of pixels left out.
+// Every pixel left out, traced for real: a 9x9 grid of rays over its filter footprint (where
+// its samples can land) hits nothing. Returns the number of pixels left out.
 int expect_left_out_pixels_see_nothing(const RenderScene& scene, const RenderCamera& cam, const CameraCoverageParams& p) {
   const CameraCoverage coverage(cam, *scene.geometry, p);
   int left_out = 0, wrong = 0;
@@ -53,7 +53,7 @@ int expect_left_out_pixels_see_nothing(const RenderScene& scene, const RenderCam
     for (int x = p.x0; x < p.x0 + p.width; ++x) {
       if (coverage.may_hit(x, y)) continue;
       ++left_out;
-      const float reach = p.filter_radius + 1.0f;
+      const float reach = p.filter_radius;
       for (int i = 0; i < 9; ++i)
         for (int j = 0; j < 9; ++j) {
           const vec2 at(x + 0.5f - reach + 2.0f * reach * i / 8.0f, y + 0.5f - reach + 2.0f * reach * j / 8.0f);
