@@ -1,7 +1,8 @@
 // The denoiser (denoiser/denoise.h) on synthetic images whose answer is known: constants and
 // noise-free images come back unchanged, Gaussian noise drops by what the window allows (and
 // no more), an albedo edge stays sharp, a mirror's reflection is denoised when the features
-// show what it reflects, the bits do not depend on the thread count, and
+// show what it reflects, a depth edge stays sharp where albedo and normal are equal, the bits
+// do not depend on the thread count, and
 // nothing non-finite gets through; fireflies are taken out (and only fireflies), and no window
 // extrapolates beyond the colours it was fitted to.
 #include <gtest/gtest.h>
@@ -303,6 +304,25 @@ TEST(Denoiser, AlbedoEdgeIsNotBlurred) {
   const Scene flat = edge_scene(false);
   const std::vector<float> blurred = denoise(make_input(flat), {}).rgb;
   EXPECT_GT(std::abs(column_error(blurred, flat, 23)) + std::abs(column_error(blurred, flat, 24)), 2 * bound);
+}
+
+TEST(Denoiser, ADepthEdgeIsNotBlurredWhereAlbedoAndNormalAreEqual) {
+  // A near and a far surface of equal albedo and normal (a grey sphere in front of grey
+  // ground): only depth tells them apart. With the depth feature, the columns either side of
+  // the edge keep their side's mean within the bound of AlbedoEdgeIsNotBlurred; without it
+  // the same noise blurs the edge past twice that bound.
+  const Scene s = edge_scene(false);
+  DenoiseInput in = make_input(s);
+  in.depth.resize(static_cast<std::size_t>(s.width) * s.height);
+  for (std::size_t i = 0; i < in.depth.size(); ++i) in.depth[i] = static_cast<int>(i % s.width) < 24 ? 2.0f : 7.0f;
+  const std::vector<float> out = denoise(in, {}).rgb;
+  const double bound = 4.0 * (s.sigma / std::sqrt(2.0)) / std::sqrt(s.height);
+  EXPECT_LT(std::abs(column_error(out, s, 23)), bound);
+  EXPECT_LT(std::abs(column_error(out, s, 24)), bound);
+
+  in.depth.clear();
+  const std::vector<float> blurred = denoise(in, {}).rgb;
+  EXPECT_GT(std::abs(column_error(blurred, s, 23)) + std::abs(column_error(blurred, s, 24)), 2 * bound);
 }
 
 // A sharp texture (the hash above, unrelated neighbours) under smooth shading E(x, y), linear in

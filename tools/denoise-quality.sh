@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # How close tessera's denoised low-spp frame comes to a converged reference, against plain
 # renders: renders SCENE at a high spp with --aov albedo,normal (the reference, seed 1000,
-# cached in OUT_DIR), then with seed SEED (1): SPP (16) spp noisy, SPP spp with --denoise, HIGH_SPP
+# cached in OUT_DIR), then with seed SEED (1): SPP (16) spp noisy, SPP spp with --denoise (and
+# --aov depth: the denoiser regresses on depth too when the frame has it), HIGH_SPP
 # (256) spp noisy, and prints a Markdown table of each one's relative MSE against the
 # reference, over the whole image and inside the edge mask (pixels where the reference's
 # albedo or normal changes, dilated by one pixel: where a feature-guided denoiser blurs), with
@@ -77,7 +78,7 @@ panels=() errors=()
 for run in noisy denoised high; do
   case $run in
     noisy) img="$p-${spp}spp-s$seed.exr" label="$spp spp" opts=(--spp "$spp") ;;
-    denoised) img="$p-${spp}spp-s$seed-denoised.exr" label="$spp spp, denoised" opts=(--spp "$spp" --denoise --aov albedo,normal) ;;
+    denoised) img="$p-${spp}spp-s$seed-denoised.exr" label="$spp spp, denoised" opts=(--spp "$spp" --denoise --aov albedo,normal,depth) ;;
     high) img="$p-${high_spp}spp-s$seed.exr" label="$high_spp spp" opts=(--spp "$high_spp") ;;
   esac
   if [[ $run == denoised && $has_denoise == 0 ]]; then
