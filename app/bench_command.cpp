@@ -57,7 +57,7 @@ BenchRow bench_scene(const std::string& path, const BenchOptions& o) {
   std::vector<RenderStats> runs;
   std::vector<double> ceiling;
   TraversalCeilingParams cp{settings.width, settings.height, o.spp, settings.max_bounces, o.threads};
-  cp.filter_radius = std::max(0.5f, 0.5f * filter_width(settings.filter));
+  cp.filter_radius = filter_reach(settings.filter);
   for (int r = 0; r < o.repeat; ++r) {
     runs.push_back(render_frame(*m.scene, m.camera, settings).stats);
     const TraversalCeilingResult c = trace_traversal_ceiling(*m.scene, m.camera, cp);

@@ -1,8 +1,8 @@
 // Which pixels' camera rays can hit anything at all. Each triangle list's world bounding box,
 // projected through a still pinhole (or orthographic) camera, covers every film point whose
-// ray could reach it; a pixel whose filter footprint (and a twentieth of a pixel) meets none of those
-// rectangles sees only the background, so its camera rays need no traversal: the answer is
-// known (the image is the same bit for bit, tests/camera_coverage_test.cpp). A product shot on
+// ray could reach it; a pixel whose filter footprint (and a twentieth of a pixel) meets none
+// of those rectangles sees only the background, so its camera rays need no traversal: the
+// answer is known (the image is the same bit for bit, tests/camera_coverage_test.cpp). A product shot on
 // an empty background spends most of its camera samples there: 86% of MetalRoughSpheres'.
 // Conservative by construction: a box reaching within a small distance of the camera's
 // position, a lens, a moving camera or scene, a non-finite camera: every pixel may hit.
@@ -25,8 +25,8 @@ struct CameraCoverageParams {
 class CameraCoverage {
  public:
   CameraCoverage() = default;  // every pixel may hit
-  // The coverage of the scene's triangles at the shutter's opening (the caller checks that
-  // nothing moves and that the camera has no lens).
+  // The coverage of the scene's triangles; every pixel may hit when the camera or the scene
+  // moves, the camera has a lens, or its rays may not be finite.
   CameraCoverage(const RenderCamera& camera, const SceneGeometry& geometry, const CameraCoverageParams& params);
   // Whether a camera ray of a sample of frame pixel (fx, fy) may hit a triangle.
   bool may_hit(int fx, int fy) const {
@@ -41,7 +41,6 @@ class CameraCoverage {
  private:
   struct Rect {
     double x_lo, x_hi, y_lo, y_hi;  // film pixels
-    double area() const { return (x_hi - x_lo) * (y_hi - y_lo); }
   };
   static constexpr double kMargin = 0.05;  // pixels
   bool project(const RenderCamera& camera, const glm::dmat4& world_to_camera, const Bounds3& box,

@@ -25,7 +25,7 @@ CameraSampler::CameraSampler(const RenderScene& scene, const RenderCamera& camer
     cp.full_width = window.cropped() ? window.full_width : settings.width;
     cp.full_height = window.cropped() ? window.full_height : settings.height;
     cp.x0 = window.x, cp.y0 = window.y, cp.width = settings.width, cp.height = settings.height;
-    cp.filter_radius = std::max(0.5f, 0.5f * filter_width(settings.filter));
+    cp.filter_radius = filter_reach(settings.filter);
     coverage_ = CameraCoverage(camera, *scene.geometry, cp);
   }
   uniform_background_ = !scene.environment.has_image();

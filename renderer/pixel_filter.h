@@ -33,6 +33,9 @@ struct PixelFilterParams {
 
 float default_filter_width(PixelFilterKind kind);
 float filter_width(const PixelFilterParams& p);  // the width in effect
+// How far from its pixel's centre a sample can land, in pixels (half the width; the box of
+// width 1 reaches its square's edges).
+inline float filter_reach(const PixelFilterParams& p) { return std::max(0.5f, 0.5f * filter_width(p)); }
 std::string describe(const PixelFilterParams& p);  // "blackman-harris 1.5": headers and resume
 
 // The filter's 1D profile at x (pixels from the centre, |x| <= width / 2); not normalised.

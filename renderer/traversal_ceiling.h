@@ -20,7 +20,7 @@ struct TraversalCeilingParams {
   int max_bounces = 8;  // rays per camera sample: at most max_bounces + 1
   int threads = 0;  // 0: all cores
   std::uint32_t seed = 1;
-  float filter_radius = 0.75f;  // the render's (the coverage's margin): its default filter's
+  float filter_radius = 0.75f;  // the render's filter_reach (the coverage's margin): its default filter's
   bool cull_camera_rays = true;  // as RenderSettings::cull_camera_rays
 };
 
