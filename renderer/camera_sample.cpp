@@ -37,14 +37,12 @@ CameraSampler::CameraSampler(const RenderScene& scene, const RenderCamera& camer
 // A pixel whose rays cannot hit anything, under a uniform background: each sample is what
 // camera_ray_escaped gives any ray, with no ray made (the camera is well formed: its rays are
 // finite, as coverage_ checks).
-bool CameraSampler::background_alone(int fx, int fy, int n, PathCounters& counters, CameraSampleResult* out) const {
-  if (!uniform_background_ || coverage_.may_hit(fx, fy)) return false;
+void CameraSampler::background_alone(int n, PathCounters& counters, CameraSampleResult* out) const {
   for (int k = 0; k < n; ++k) {
     out[k] = CameraSampleResult{};
     out[k].radiance = background_;
   }
   if (background_dropped_) counters.dropped += n;
-  return true;
 }
 
 // The sample's point on the film (from the filter's draw `u`, the sampler's first), lens
@@ -65,8 +63,8 @@ float CameraSampler::depth(const Ray& ray, float distance) const {
 
 void CameraSampler::sample(int fx, int fy, int s0, int n, PathCounters& counters, CameraSampleResult* out,
                            PathRecord* const* records) const {
-  if (!records && background_alone(fx, fy, n, counters, out)) return;
   const bool traced = records || coverage_.may_hit(fx, fy);  // else every ray sees the background
+  if (!traced && uniform_background_) return background_alone(n, counters, out);
   std::optional<Sampler> rng[kGroup];
   Ray rays[kGroup];
   int lane[kGroup];  // sample k's ray in the packet; -1: the camera made no finite ray

@@ -54,7 +54,7 @@ class CameraSampler {
  private:
   void camera_sample_point(int fx, int fy, const vec2& u, Sampler& rng, vec2& film, vec2& lens, float& time) const;
   float depth(const Ray& ray, float distance) const;
-  bool background_alone(int fx, int fy, int n, PathCounters& counters, CameraSampleResult* out) const;
+  void background_alone(int n, PathCounters& counters, CameraSampleResult* out) const;
 
   const RenderScene& scene_;
   const RenderCamera& camera_;
