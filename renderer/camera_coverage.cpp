@@ -43,8 +43,8 @@ bool well_formed(const RenderCamera& c) {
                                                           : std::isfinite(c.half_height) && c.half_height > 0.0f);
 }
 
-double distance_to_box(const glm::dvec3& p, const Bounds3& b) {
-  const glm::dvec3 d = glm::max(glm::max(glm::dvec3(b.lo) - p, p - glm::dvec3(b.hi)), glm::dvec3(0.0));
+double distance_to_box(const glm::dvec3& p, const glm::dvec3& lo, const glm::dvec3& hi) {
+  const glm::dvec3 d = glm::max(glm::max(lo - p, p - hi), glm::dvec3(0.0));
   return glm::length(d);
 }
 
@@ -71,14 +71,12 @@ bool CameraCoverage::project(const RenderCamera& camera, const glm::dmat4& world
                              const CameraCoverageParams& params, Rect& rect) {
   if (box.empty()) return false;
   // Widened for rounding: Embree's hits and generate_ray's directions are float.
-  const glm::dvec3 lo(box.lo), hi(box.hi);
-  const double slack = 1e-5 * (glm::length(hi - lo) + std::max(glm::length(lo), glm::length(hi)));
+  const double slack = 1e-5 * (glm::length(glm::dvec3(box.hi) - glm::dvec3(box.lo)) +
+                               std::max(glm::length(glm::dvec3(box.lo)), glm::length(glm::dvec3(box.hi))));
+  const glm::dvec3 lo = glm::dvec3(box.lo) - slack, hi = glm::dvec3(box.hi) + slack;
   glm::dvec3 corner[8];
-  for (int i = 0; i < 8; ++i) {
-    const glm::dvec3 w(i & 1 ? hi.x + slack : lo.x - slack, i & 2 ? hi.y + slack : lo.y - slack,
-                       i & 4 ? hi.z + slack : lo.z - slack);
-    corner[i] = glm::dvec3(world_to_camera * glm::dvec4(w, 1.0));
-  }
+  for (int i = 0; i < 8; ++i)
+    corner[i] = glm::dvec3(world_to_camera * glm::dvec4(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z, 1.0));
   const bool perspective = camera.projection == Camera::Projection::Perspective;
   const double sx = perspective ? double(camera.tan_half_fov_y) * camera.aspect : double(camera.half_height) * camera.aspect;
   const double sy = perspective ? double(camera.tan_half_fov_y) : double(camera.half_height);
@@ -88,11 +86,10 @@ bool CameraCoverage::project(const RenderCamera& camera, const glm::dmat4& world
   double cut = 0.0;
   if (perspective) {
     const glm::dvec3 eye(camera.camera_to_world[3]);
-    const Bounds3 wide{vec3(lo - slack), vec3(hi + slack)};
     const double kx = 1.0 + 2.0 * (params.filter_radius + 2.0) / params.full_width;
     const double ky = 1.0 + 2.0 * (params.filter_radius + 2.0) / params.full_height;
     const double cos_max = 1.0 / std::sqrt(1.0 + (kx * sx) * (kx * sx) + (ky * sy) * (ky * sy));
-    cut = 0.5 * distance_to_box(eye, wide) * cos_max;
+    cut = 0.5 * distance_to_box(eye, lo, hi) * cos_max;
     if (!(cut > 0.0)) {  // the camera is in or at the box
       all_ = true;
       return false;
