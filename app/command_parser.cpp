@@ -10,6 +10,7 @@
 #include "app/exit_codes.h"
 #include "app/nearest_name.h"
 #include "renderer/image_output.h"
+#include "renderer/isa.h"
 
 namespace tessera {
 
@@ -93,6 +94,8 @@ int explain_extras(CLI::App& app, const CLI::ExtrasError& e) {
 
 }  // namespace
 
+std::string version_line() { return fmt::format("tessera {} ({})", tessera_version(), compiled_isa()); }
+
 int parse_command_line(CLI::App& app, int argc, char** argv) {
   std::string topic;
   app.add_subcommand("help", "Print this help, or a command's: tessera help render")
@@ -123,7 +126,7 @@ int parse_command_line(CLI::App& app, int argc, char** argv) {
     return usage_error(e.what());
   }
   if (app.got_subcommand("version")) {
-    fmt::print("tessera {}\n", tessera_version());
+    fmt::print("{}\n", version_line());
     return kExitSuccess;
   }
   if (!app.got_subcommand("help")) return -1;

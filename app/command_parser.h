@@ -5,7 +5,12 @@
 
 #include <CLI/CLI.hpp>
 
+#include <string>
+
 namespace tessera {
+
+// "tessera 0.1.0 (x86-64-v3)": the version and the instruction set this program is built for.
+std::string version_line();
 
 // Adds the help and version commands and the number checks to `app` (its commands already
 // added), then parses. Returns -1 when a command is to run; else the exit code, after the

@@ -12,6 +12,7 @@
 #include "app/commands.h"
 #include "app/exit_codes.h"
 #include "app/interrupt.h"
+#include "app/isa_dispatch.h"
 #include "renderer/image_input.h"
 #include "renderer/image_output.h"
 #include "renderer/mpi_ranks.h"
@@ -20,6 +21,7 @@
 
 int main(int argc, char** argv) {
   using namespace tessera;
+  if (const int code = run_chosen_isa(argv); code >= 0) return code;
   install_interrupt_handlers();
   CLI::App app{"tessera " + tessera_version() +
                ": a physically based path tracer for glTF 2.0 scenes.\n\n"
@@ -28,7 +30,7 @@ int main(int argc, char** argv) {
                "130 interrupted.",
                "tessera"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "tessera " + tessera_version());
+  app.set_version_flag("--version", version_line());
   RenderOptions render;
   InfoOptions info;
   BenchOptions bench;

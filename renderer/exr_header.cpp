@@ -8,6 +8,8 @@
 #include <OpenEXR/ImfStandardAttributes.h>
 #include <OpenEXR/ImfStringAttribute.h>
 
+#include "renderer/isa.h"
+
 namespace tessera {
 
 namespace {
@@ -33,6 +35,7 @@ void insert_provenance(Imf::Header& header, const FrameMetadata& m) {
   if (!m.command_line.empty()) header.insert("tesseraCommandLine", Imf::StringAttribute(m.command_line));
   header.insert("software", Imf::StringAttribute("tessera " + tessera_version()));
   header.insert("tesseraVersion", Imf::StringAttribute(tessera_version()));
+  header.insert("tesseraIsa", Imf::StringAttribute(std::string(compiled_isa())));
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfIntAttribute.h>
+#include <OpenEXR/ImfStringAttribute.h>
 #include <OpenEXR/ImfMatrixAttribute.h>
 
 namespace tessera::test {
@@ -26,6 +27,11 @@ std::vector<float> exr_rgb(const std::string& path) {
 int exr_int(const std::string& path, const char* attribute) {
   Imf::InputFile file(path.c_str());
   return file.header().typedAttribute<Imf::IntAttribute>(attribute).value();
+}
+
+std::string exr_string(const std::string& path, const char* attribute) {
+  Imf::InputFile file(path.c_str());
+  return file.header().typedAttribute<Imf::StringAttribute>(attribute).value();
 }
 
 ExrWindows exr_windows(const std::string& path) {

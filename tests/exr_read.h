@@ -14,6 +14,7 @@ struct ExrWindows {
 };
 ExrWindows exr_windows(const std::string& path);
 int exr_int(const std::string& path, const char* attribute);
+std::string exr_string(const std::string& path, const char* attribute);
 float exr_float(const std::string& path, const char* attribute);
 std::vector<float> exr_m44f(const std::string& path, const char* attribute);  // 16 values, row by row
 
