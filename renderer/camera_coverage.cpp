@@ -38,7 +38,9 @@ bool well_formed(const RenderCamera& c) {
   for (int i = 0; i < 4; ++i)
     if (!all_finite(c.camera_to_world[i])) return false;
   const float det = glm::determinant(m);
-  return std::isfinite(det) && det != 0.0f && std::isfinite(c.aspect) && c.aspect > 0.0f &&
+  const bool lens_ok = c.lens_radius <= 0.0f || (std::isfinite(c.lens_radius) && std::isfinite(c.focus_distance) &&
+                                                 c.focus_distance > 0.0f);
+  return lens_ok && std::isfinite(det) && det != 0.0f && std::isfinite(c.aspect) && c.aspect > 0.0f &&
          (c.projection == Camera::Projection::Perspective ? std::isfinite(c.tan_half_fov_y) && c.tan_half_fov_y > 0.0f
                                                           : std::isfinite(c.half_height) && c.half_height > 0.0f);
 }
@@ -52,67 +54,113 @@ double distance_to_box(const glm::dvec3& p, const glm::dvec3& lo, const glm::dve
 
 CameraCoverage::CameraCoverage(const RenderCamera& camera, const SceneGeometry& geometry,
                                const CameraCoverageParams& params) {
-  if (camera.moves() || camera.lens_radius > 0.0f || geometry.moves() || !well_formed(camera)) return;
+  if (camera.moves() || geometry.moves() || !well_formed(camera)) return;
   all_ = false;
   x0_ = params.x0, y0_ = params.y0, width_ = params.width, height_ = params.height;
   covered_.assign(static_cast<std::size_t>(width_) * height_, 0);
   const glm::dmat4 world_to_camera = glm::inverse(glm::dmat4(camera.camera_to_world));
   for (const Bounds3& box : placed_bounds(geometry.placed_primitives())) {
-    Rect r;
-    if (project(camera, world_to_camera, box, params, r)) cover_rect(r, params);
+    cover_box(camera, world_to_camera, box, params);
     if (all_) break;
   }
   if (all_) covered_.clear();
 }
 
-// The film rectangle (in pixels) of `box`'s part in front of the camera; false when none of
-// it is. A box within the camera's reach sets all_ (and returns false).
-bool CameraCoverage::project(const RenderCamera& camera, const glm::dmat4& world_to_camera, const Bounds3& box,
-                             const CameraCoverageParams& params, Rect& rect) {
-  if (box.empty()) return false;
+// Covers the film pixels whose rays can reach `box`. A box within the camera's reach sets all_.
+void CameraCoverage::cover_box(const RenderCamera& camera, const glm::dmat4& world_to_camera, const Bounds3& box,
+                               const CameraCoverageParams& params) {
+  if (box.empty()) return;
   // Widened for rounding: Embree's hits and generate_ray's directions are float.
   const double slack = 1e-5 * (glm::length(glm::dvec3(box.hi) - glm::dvec3(box.lo)) +
                                std::max(glm::length(glm::dvec3(box.lo)), glm::length(glm::dvec3(box.hi))));
   const glm::dvec3 lo = glm::dvec3(box.lo) - slack, hi = glm::dvec3(box.hi) + slack;
   glm::dvec3 corner[8];
-  for (int i = 0; i < 8; ++i)
+  double deepest = -HUGE_VAL;
+  for (int i = 0; i < 8; ++i) {
     corner[i] = glm::dvec3(world_to_camera * glm::dvec4(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z, 1.0));
+    if (!std::isfinite(corner[i].x) || !std::isfinite(corner[i].y) || !std::isfinite(corner[i].z)) {
+      all_ = true;
+      return;
+    }
+    deepest = std::max(deepest, -corner[i].z);
+  }
   const bool perspective = camera.projection == Camera::Projection::Perspective;
-  const double sx = perspective ? double(camera.tan_half_fov_y) * camera.aspect : double(camera.half_height) * camera.aspect;
-  const double sy = perspective ? double(camera.tan_half_fov_y) : double(camera.half_height);
+  View view;
+  view.perspective = perspective;
+  view.sx = perspective ? double(camera.tan_half_fov_y) * camera.aspect : double(camera.half_height) * camera.aspect;
+  view.sy = perspective ? double(camera.tan_half_fov_y) : double(camera.half_height);
+  // A thin lens moves a ray's origin by up to its radius in the lens plane (z = 0) and aims it
+  // at the pinhole ray's point on the focal plane (depth f), widened for the disk's rounding.
+  view.lens = camera.lens_radius > 0.0f ? camera.lens_radius * (1.0 + 1e-4) : 0.0;
+  view.focus = camera.focus_distance;
   // A perspective ray meets a point at depth -z = |p| cos(angle to the axis); within the film
   // (and a filter's reach beyond it) that angle is bounded, so the box's points such rays can
-  // reach lie deeper than `cut`: the box is cut there and the rest projected.
+  // reach lie deeper than `cut`: the box is cut there and the rest projected. Through a lens a
+  // point at depth D < f is at most lens + D / cos_max from the camera, and one beyond f is
+  // deeper than f. Orthographic rays start on z = 0.
   double cut = 0.0;
   if (perspective) {
     const glm::dvec3 eye(camera.camera_to_world[3]);
     const double kx = 1.0 + 2.0 * (params.filter_radius + 2.0) / params.full_width;
     const double ky = 1.0 + 2.0 * (params.filter_radius + 2.0) / params.full_height;
-    const double cos_max = 1.0 / std::sqrt(1.0 + (kx * sx) * (kx * sx) + (ky * sy) * (ky * sy));
-    cut = 0.5 * distance_to_box(eye, lo, hi) * cos_max;
-    if (!(cut > 0.0)) {  // the camera is in or at the box
+    const double cos_max =
+        1.0 / std::sqrt(1.0 + (kx * view.sx) * (kx * view.sx) + (ky * view.sy) * (ky * view.sy));
+    cut = 0.5 * (distance_to_box(eye, lo, hi) - view.lens) * cos_max;
+    if (view.lens > 0.0) cut = std::min(cut, 0.5 * view.focus);
+      if (!(cut > 0.0)) {  // the camera (or its lens) is in or at the box
       all_ = true;
-      return false;
+      return;
     }
   }
-  double x_lo = HUGE_VAL, x_hi = -HUGE_VAL, y_lo = HUGE_VAL, y_hi = -HUGE_VAL;
+  if (deepest < cut) return;  // all behind the camera
+  // Through a lens, the blur differs with depth: the box is covered slab by slab, each with
+  // its own widening (depths doubling for a perspective camera, eight even steps else).
+  const int slabs = view.lens == 0.0 ? 1 : perspective ? std::clamp(int(std::ceil(std::log2(deepest / cut))), 1, 24) : 8;
+  for (int k = 0; k < slabs && !all_; ++k) {
+    const double near = k == 0 ? cut : perspective ? cut * std::exp2(k) : cut + (deepest - cut) * k / slabs;
+    const double far = k + 1 == slabs ? HUGE_VAL : perspective ? cut * std::exp2(k + 1) : cut + (deepest - cut) * (k + 1) / slabs;
+    Rect r;
+    if (slab_rect(corner, near, far, view, params, r)) cover_rect(r, params);
+  }
+}
+
+// The film rectangle (pixels) of the rays that can reach the box's part at depths [near, far]
+// (false when there is none of it); a non-finite one sets all_.
+bool CameraCoverage::slab_rect(const glm::dvec3 (&corner)[8], double near, double far, const View& view,
+                               const CameraCoverageParams& params, Rect& rect) {
+  double x_lo = HUGE_VAL, x_hi = -HUGE_VAL, y_lo = HUGE_VAL, y_hi = -HUGE_VAL, d_lo = HUGE_VAL, d_hi = -HUGE_VAL;
   auto project = [&](const glm::dvec3& p) {
-    const double depth = perspective ? -p.z : 1.0;
-    const double x = (p.x / (depth * sx) + 1.0) * 0.5 * params.full_width;
-    const double y = (1.0 - p.y / (depth * sy)) * 0.5 * params.full_height;
+    const double depth = view.perspective ? -p.z : 1.0;
+    const double x = (p.x / (depth * view.sx) + 1.0) * 0.5 * params.full_width;
+    const double y = (1.0 - p.y / (depth * view.sy)) * 0.5 * params.full_height;
     x_lo = std::min(x_lo, x), x_hi = std::max(x_hi, x), y_lo = std::min(y_lo, y), y_hi = std::max(y_hi, y);
+    d_lo = std::min(d_lo, -p.z), d_hi = std::max(d_hi, -p.z);
   };
-  const double z_max = perspective ? -cut : 0.0;  // orthographic rays start on z = 0 and go to -z
+  auto inside = [&](const glm::dvec3& p) { return -p.z >= near && -p.z <= far; };
   for (int i = 0; i < 8; ++i) {
-    if (corner[i].z <= z_max) project(corner[i]);
-    for (int axis = 1; axis < 8; axis <<= 1) {  // the box's edges from this corner that cross z_max
+    if (inside(corner[i])) project(corner[i]);
+    for (int axis = 1; axis < 8; axis <<= 1) {  // where the box's edges from this corner cross the slab's faces
       const int j = i | axis;
-      if (j == i || (corner[i].z <= z_max) == (corner[j].z <= z_max)) continue;
-      const double t = (z_max - corner[i].z) / (corner[j].z - corner[i].z);
-      project(corner[i] + t * (corner[j] - corner[i]));
+      if (j == i) continue;
+      for (const double depth : {near, far}) {
+        if ((-corner[i].z < depth) == (-corner[j].z < depth)) continue;
+        const double t = (-depth - corner[i].z) / (corner[j].z - corner[i].z);
+        project(corner[i] + t * (corner[j] - corner[i]));
+      }
     }
   }
-  if (x_lo > x_hi) return false;  // all behind the camera
+  if (x_lo > x_hi) return false;  // none of the box at these depths
+  if (view.lens > 0.0) {
+    // A ray through lens point l reaching depth D lands where the pinhole ray of a film point
+    // l (1/D - 1/f) away (perspective, in units of the film plane at depth 1), or l (1 - D/f)
+    // away (orthographic) would: the rectangle grows by the most of that over the slab's depths.
+    auto spread = [&](double d) {
+      return view.perspective ? std::fabs(1.0 / d - 1.0 / view.focus) : std::fabs(1.0 - d / view.focus);
+    };
+    const double reach = view.lens * std::max(spread(d_lo), spread(d_hi));
+    const double grow_x = reach / view.sx * 0.5 * params.full_width, grow_y = reach / view.sy * 0.5 * params.full_height;
+    x_lo -= grow_x, x_hi += grow_x, y_lo -= grow_y, y_hi += grow_y;
+  }
   if (!std::isfinite(x_lo) || !std::isfinite(x_hi) || !std::isfinite(y_lo) || !std::isfinite(y_hi)) {
     all_ = true;
     return false;

@@ -4,8 +4,9 @@
 // of those rectangles sees only the background, so its camera rays need no traversal: the
 // answer is known (the image is the same bit for bit, tests/camera_coverage_test.cpp). A product shot on
 // an empty background spends most of its camera samples there: 86% of MetalRoughSpheres'.
-// Conservative by construction: a box reaching within a small distance of the camera's
-// position, a lens, a moving camera or scene, a non-finite camera: every pixel may hit.
+// A thin lens widens each rectangle by how far its rays stray from the pinhole's at the box's
+// depths. Conservative by construction: a box reaching within a small distance of the camera's
+// lens, a moving camera or scene, a non-finite camera: every pixel may hit.
 #pragma once
 
 #include <cstdint>
@@ -26,7 +27,7 @@ class CameraCoverage {
  public:
   CameraCoverage() = default;  // every pixel may hit
   // The coverage of the scene's triangles; every pixel may hit when the camera or the scene
-  // moves, the camera has a lens, or its rays may not be finite.
+  // moves, or its rays may not be finite.
   CameraCoverage(const RenderCamera& camera, const SceneGeometry& geometry, const CameraCoverageParams& params);
   // Whether a camera ray of a sample of frame pixel (fx, fy) may hit a triangle.
   bool may_hit(int fx, int fy) const {
@@ -42,9 +43,16 @@ class CameraCoverage {
   struct Rect {
     double x_lo, x_hi, y_lo, y_hi;  // film pixels
   };
+  struct View {  // the camera as the projection needs it (camera space, depth D = -z)
+    bool perspective = true;
+    double sx = 1, sy = 1;  // film half-extent: tangents (perspective) or scene units
+    double lens = 0, focus = 1;  // thin lens radius (0: pinhole) and focus distance
+  };
   static constexpr double kMargin = 0.05;  // pixels
-  bool project(const RenderCamera& camera, const glm::dmat4& world_to_camera, const Bounds3& box,
-               const CameraCoverageParams& params, Rect& rect);
+  void cover_box(const RenderCamera& camera, const glm::dmat4& world_to_camera, const Bounds3& box,
+                 const CameraCoverageParams& params);
+  bool slab_rect(const glm::dvec3 (&corner)[8], double near, double far, const View& view,
+                 const CameraCoverageParams& params, Rect& rect);
   void cover_rect(const Rect& r, const CameraCoverageParams& params);
 
   bool all_ = true;

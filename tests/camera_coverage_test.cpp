@@ -1,7 +1,7 @@
 // CameraCoverage: the pixels it leaves out really see nothing (checked by tracing dense rays
-// over each one's whole filter footprint and margin), it leaves out what it should (the sky
-// above a floor that runs under and behind the camera), it gives up where it must (the camera
-// inside the geometry's box), and a render that skips those pixels' rays is the same bit for
+// over each one's whole filter footprint and margin, and lens), it leaves out what it should
+// (the sky above a floor that runs under and behind the camera), it gives up where it must
+// (the camera or its lens inside the geometry's box), and a render that skips those pixels' rays is the same bit for
 // bit as one that traces them all, for every camera, filter, crop and background it applies to.
 #include <gtest/gtest.h>
 
@@ -44,24 +44,30 @@ CameraCoverageParams whole_frame(int w, int h, float radius) {
   return p;
 }
 
-// Every pixel left out, traced for real: a 9x9 grid of rays over its filter footprint (where
-// its samples can land) hits nothing. Returns the number of pixels left out.
+// Every pixel left out, traced for real: a grid of rays over its filter footprint (where its
+// samples can land; 9x9, or 5x5 through a lens) and, through a lens, from a 5x5 grid of lens
+// positions that reaches the disk's rim, hits nothing. Returns the number of pixels left out.
 int expect_left_out_pixels_see_nothing(const RenderScene& scene, const RenderCamera& cam, const CameraCoverageParams& p) {
   const CameraCoverage coverage(cam, *scene.geometry, p);
+  const bool lens = cam.lens_radius > 0.0f;
+  const int film_n = lens ? 5 : 9, lens_n = lens ? 5 : 1;
   int left_out = 0, wrong = 0;
   for (int y = p.y0; y < p.y0 + p.height; ++y)
     for (int x = p.x0; x < p.x0 + p.width; ++x) {
       if (coverage.may_hit(x, y)) continue;
       ++left_out;
       const float reach = p.filter_radius;
-      for (int i = 0; i < 9; ++i)
-        for (int j = 0; j < 9; ++j) {
-          const vec2 at(x + 0.5f - reach + 2.0f * reach * i / 8.0f, y + 0.5f - reach + 2.0f * reach * j / 8.0f);
-          HitRecord hit;
-          const Ray ray = cam.generate_ray({at.x / p.full_width, at.y / p.full_height}, vec2(0.5f));
-          if (scene.geometry->intersect(ray, hit) && wrong++ == 0)
-            ADD_FAILURE() << "pixel " << x << "," << y << " left out, but a ray hits";
-        }
+      for (int i = 0; i < film_n; ++i)
+        for (int j = 0; j < film_n; ++j)
+          for (int k = 0; k < lens_n * lens_n; ++k) {
+            const float step = 2.0f * reach / (film_n - 1);
+            const vec2 at(x + 0.5f - reach + step * i, y + 0.5f - reach + step * j);
+            const vec2 on_lens = lens ? vec2(k % lens_n, k / lens_n) * (0.9999999f / (lens_n - 1)) : vec2(0.5f);
+            HitRecord hit;
+            const Ray ray = cam.generate_ray({at.x / p.full_width, at.y / p.full_height}, on_lens);
+            if (scene.geometry->intersect(ray, hit) && wrong++ == 0)
+              ADD_FAILURE() << "pixel " << x << "," << y << " left out, but a ray hits";
+          }
     }
   EXPECT_EQ(wrong, 0);
   EXPECT_EQ(coverage.empty_pixels(), static_cast<std::uint64_t>(left_out));
@@ -97,22 +103,56 @@ TEST(CameraCoverage, NothingIsLeftOutWhereItCannotBeKnown) {
   // Inside the floor's box (it is flat, so widened only by rounding's slack): nothing is known.
   const RenderCamera on_floor = make_camera(test::look_at({0, -1, 5}, {0, 2, 0}, 40.0f), w, h, {});
   EXPECT_EQ(CameraCoverage(on_floor, *shot_scene().geometry, whole_frame(w, h, 0.5f)).empty_pixels(), 0u);
-  CameraParams lens;
-  lens.aperture = 0.2f;
-  lens.focus_distance = 5.0f;
-  const RenderCamera thin_lens = make_camera(test::look_at({0, 0, 5}, {0, 0, 0}, 40.0f), w, h, lens);
-  EXPECT_EQ(CameraCoverage(thin_lens, *shot_scene().geometry, whole_frame(w, h, 0.5f)).empty_pixels(), 0u);
+  // A lens as wide as the camera's height over the floor reaches into the floor's box.
+  CameraParams wide;
+  wide.aperture = 2.2f;
+  wide.focus_distance = 5.0f;
+  const RenderCamera lens_at_floor = make_camera(test::look_at({0, 0, 5}, {0, 0, 0}, 40.0f), w, h, wide);
+  EXPECT_EQ(CameraCoverage(lens_at_floor, *shot_scene().geometry, whole_frame(w, h, 0.5f)).empty_pixels(), 0u);
 }
 
-RenderResult render(const RenderScene& scene, const Camera& camera, RenderSettings s, bool cull) {
+CameraParams thin_lens(float aperture, float focus_distance) {
+  CameraParams lens;
+  lens.aperture = aperture;
+  lens.focus_distance = focus_distance;
+  return lens;
+}
+
+// Through a lens the boxes' rectangles grow by the defocus blur at their depths: the pixels
+// left out still see nothing from any point of the lens, and there are fewer of them the wider
+// the lens and the further the focus from the objects.
+TEST(CameraCoverage, ThroughALensPixelsLeftOutSeeNothing) {
+  const int w = 32, h = 24;
+  const Camera level = test::look_at({0, 0, 5}, {0, 0, 0}, 40.0f);
+  const CameraCoverageParams frame = whole_frame(w, h, 0.75f);
+  const int pinhole = expect_left_out_pixels_see_nothing(shot_scene(), make_camera(level, w, h, {}), frame);
+  const int focused = expect_left_out_pixels_see_nothing(shot_scene(), make_camera(level, w, h, thin_lens(0.2f, 5.0f)), frame);
+  const int far_focus = expect_left_out_pixels_see_nothing(shot_scene(), make_camera(level, w, h, thin_lens(0.2f, 50.0f)), frame);
+  const int wide = expect_left_out_pixels_see_nothing(shot_scene(), make_camera(level, w, h, thin_lens(0.6f, 5.0f)), frame);
+  EXPECT_GT(wide, 0);
+  EXPECT_LT(focused, pinhole);
+  EXPECT_LT(far_focus, focused);
+  EXPECT_LT(wide, focused);
+  Camera ortho = test::look_at({0, 0.5f, 5}, {0, 0.5f, 0}, 40.0f);
+  ortho.projection = Camera::Projection::Orthographic;
+  ortho.xmag = ortho.ymag = 2.0f;
+  EXPECT_GT(expect_left_out_pixels_see_nothing(shot_scene(), make_camera(ortho, w, h, thin_lens(0.3f, 3.0f)), frame), 0);
+  const Camera tilted = test::look_at({3, 1.5f, 4}, {0, 0, 0}, 30.0f);
+  EXPECT_GT(expect_left_out_pixels_see_nothing(shot_scene(), make_camera(tilted, w, h, thin_lens(0.05f, 5.0f)), frame), 0);
+}
+
+RenderResult render(const RenderScene& scene, const Camera& camera, RenderSettings s, bool cull,
+                    const CameraParams& lens = {}) {
   s.cull_camera_rays = cull;
   const int fw = s.window.cropped() ? s.window.full_width : s.width, fh = s.window.cropped() ? s.window.full_height : s.height;
-  return render_frame(scene, make_camera(camera, fw, fh, {}), s);
+  return render_frame(scene, make_camera(camera, fw, fh, lens), s);
 }
 
-void expect_same_render_with_fewer_rays(const RenderScene& scene, const Camera& camera, const RenderSettings& s) {
-  SCOPED_TRACE(testing::Message() << s.width << "x" << s.height << " filter " << describe(s.filter));
-  const RenderResult all = render(scene, camera, s, false), culled = render(scene, camera, s, true);
+void expect_same_render_with_fewer_rays(const RenderScene& scene, const Camera& camera, const RenderSettings& s,
+                                        const CameraParams& lens = {}) {
+  SCOPED_TRACE(testing::Message() << s.width << "x" << s.height << " filter " << describe(s.filter) << " aperture "
+                                  << lens.aperture);
+  const RenderResult all = render(scene, camera, s, false, lens), culled = render(scene, camera, s, true, lens);
   test::expect_same_image(all.image, culled.image);
   EXPECT_LT(culled.stats.rays, all.stats.rays);
 }
@@ -142,6 +182,7 @@ TEST(CameraCoverage, RenderIsTheSameBitForBitWithAndWithoutCulling) {
   ortho.projection = Camera::Projection::Orthographic;
   ortho.xmag = ortho.ymag = 2.0f;
   expect_same_render_with_fewer_rays(shot_scene(), ortho, transparent);
+  expect_same_render_with_fewer_rays(shot_scene(), level, small_settings(), thin_lens(0.2f, 3.0f));
 }
 
 TEST(CameraCoverage, EnvironmentImageAndNonFiniteBackgroundRenderTheSame) {
@@ -150,6 +191,8 @@ TEST(CameraCoverage, EnvironmentImageAndNonFiniteBackgroundRenderTheSame) {
   env.rotate_degrees = 30.0f;
   const RenderScene lit(product_shot(), env);
   expect_same_render_with_fewer_rays(lit, test::look_at({0, 0, 5}, {0, 0, 0}, 40.0f), small_settings());
+  expect_same_render_with_fewer_rays(lit, test::look_at({0, 0, 5}, {0, 0, 0}, 40.0f), small_settings(),
+                                     thin_lens(0.3f, 2.0f));
   EnvironmentParams bad;
   bad.background = vec3(std::numeric_limits<float>::infinity());
   const RenderScene broken(product_shot(), bad);

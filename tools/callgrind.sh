@@ -23,7 +23,10 @@ cat >"$stub_dir/hwy_stub.cpp" <<'EOF'
 namespace hwy { namespace platform { std::uint64_t TimerResolution() { return 1; } } }
 EOF
 g++ -O2 -shared -fPIC -o "$stub_dir/hwy_stub.so" "$stub_dir/hwy_stub.cpp"
-LD_PRELOAD="$stub_dir/hwy_stub.so" valgrind --tool=callgrind --callgrind-out-file="$out" "$tessera" "$@" 2>&1 |
+# The generic program (docs/usage.md#instruction-sets), unless TESSERA_ISA says otherwise:
+# callgrind does not follow tessera's hand-over to tessera-x86-64-v3 (an exec), and the
+# counts stay comparable with those recorded before that program existed.
+TESSERA_ISA="${TESSERA_ISA:-x86-64}" LD_PRELOAD="$stub_dir/hwy_stub.so" valgrind --tool=callgrind --callgrind-out-file="$out" "$tessera" "$@" 2>&1 |
   grep -E "I\s+refs" >&2
 callgrind_annotate --inclusive=yes "$out" 2>/dev/null | grep -v '^\s*$' | sed -n '/file:function/,$p' | sed -n '2,41p' |
   cut -c1-160
