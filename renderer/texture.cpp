@@ -47,6 +47,22 @@ int wrap(int i, int n, WrapMode mode) {
   }
 }
 
+// Every byte's sRGB decode, made once at start: a lookup is then one load per channel.
+const std::array<float, 256> kSrgbTable = [] {
+  std::array<float, 256> t;
+  for (int k = 0; k < 256; ++k) t[k] = srgb_to_linear(k / 255.0f);
+  return t;
+}();
+
+// The linear RGBA of the texel stored at `at` (inlined into the lookups below).
+[[gnu::always_inline]] inline vec4 decode_texel(const TextureImage& image, std::size_t at) {
+  if (image.texels8.empty()) return image.texels_float[at];
+  const std::array<std::uint8_t, 4>& t = image.texels8[at];
+  constexpr float kInv255 = 1.0f / 255.0f;
+  if (image.encoding == ColorEncoding::SRGB) return {kSrgbTable[t[0]], kSrgbTable[t[1]], kSrgbTable[t[2]], t[3] * kInv255};
+  return {t[0] * kInv255, t[1] * kInv255, t[2] * kInv255, t[3] * kInv255};
+}
+
 vec2 transform_uv(const TextureTransform& t, vec2 uv) {
   if (t.rotation == 0.0f && t.scale == vec2(1.0f) && t.offset == vec2(0.0f)) return uv;
   // KHR_texture_transform: uv' = T * R * S * uv, with R rotating counter-clockwise in UV space.
@@ -100,19 +116,7 @@ TextureImage make_texture_image(const Image& image, ColorEncoding encoding) {
   return out;
 }
 
-vec4 TextureImage::texel(int i, int j) const {
-  const std::size_t at = index(i, j);
-  if (texels8.empty()) return texels_float[at];
-  static const std::array<float, 256> kSrgb = [] {
-    std::array<float, 256> t;
-    for (int k = 0; k < 256; ++k) t[k] = srgb_to_linear(k / 255.0f);
-    return t;
-  }();
-  const std::array<std::uint8_t, 4>& t = texels8[at];
-  constexpr float kInv255 = 1.0f / 255.0f;
-  if (encoding == ColorEncoding::SRGB) return {kSrgb[t[0]], kSrgb[t[1]], kSrgb[t[2]], t[3] * kInv255};
-  return {t[0] * kInv255, t[1] * kInv255, t[2] * kInv255, t[3] * kInv255};
-}
+vec4 TextureImage::texel(int i, int j) const { return decode_texel(*this, index(i, j)); }
 
 vec4 sample_texture(const TextureImage& image, const TextureRef& ref, vec2 uv) {
   uv = transform_uv(ref.transform, uv);
@@ -127,10 +131,12 @@ vec4 sample_texture(const TextureImage& image, const TextureRef& ref, vec2 uv) {
   // Inside the image every wrap mode is the identity: only texels past an edge are wrapped.
   auto column = [&](int c) { return c >= 0 && c < image.width ? c : wrap(c, image.width, ref.wrap_s); };
   auto row = [&](int r) { return r >= 0 && r < image.height ? r : wrap(r, image.height, ref.wrap_t); };
-  if (ref.filter == FilterMode::Nearest) return image.texel(column(i + (dx >= 0.5f)), row(j + (dy >= 0.5f)));
+  if (ref.filter == FilterMode::Nearest)
+    return decode_texel(image, image.index(column(i + (dx >= 0.5f)), row(j + (dy >= 0.5f))));
   const int i0 = column(i), i1 = column(i + 1), j0 = row(j), j1 = row(j + 1);
-  return (1 - dx) * (1 - dy) * image.texel(i0, j0) + dx * (1 - dy) * image.texel(i1, j0) +
-         (1 - dx) * dy * image.texel(i0, j1) + dx * dy * image.texel(i1, j1);
+  return (1 - dx) * (1 - dy) * decode_texel(image, image.index(i0, j0)) +
+         dx * (1 - dy) * decode_texel(image, image.index(i1, j0)) +
+         (1 - dx) * dy * decode_texel(image, image.index(i0, j1)) + dx * dy * decode_texel(image, image.index(i1, j1));
 }
 
 }  // namespace tessera

@@ -26,9 +26,10 @@ struct TextureImage {
   std::vector<vec4> texels_float;  // linear, when the source has more than 8 bits
 
   bool empty() const { return width == 0; }
-  std::size_t index(int i, int j) const {  // texel (column i, row j from the top)
-    const std::size_t block = static_cast<std::size_t>(j / kBlock) * blocks_x + i / kBlock;
-    return block * (kBlock * kBlock) + (j % kBlock) * kBlock + i % kBlock;
+  std::size_t index(int i, int j) const {  // texel (column i, row j from the top; both >= 0)
+    const unsigned u = static_cast<unsigned>(i), v = static_cast<unsigned>(j);  // shifts and masks
+    const std::size_t block = static_cast<std::size_t>(v / kBlock) * blocks_x + u / kBlock;
+    return block * (kBlock * kBlock) + (v % kBlock) * kBlock + u % kBlock;
   }
   vec4 texel(int i, int j) const;  // linear RGBA; 0 <= i < width, 0 <= j < height
 };
