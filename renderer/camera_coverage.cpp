@@ -2,35 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <unordered_map>
 
 namespace tessera {
 namespace {
-
-Bounds3 position_bounds(const TriangleMesh& mesh) {
-  Bounds3 b;
-  for (const vec3& p : mesh.positions) b.extend(p);
-  return b;
-}
-
-Bounds3 transformed(const Bounds3& b, const glm::mat4& m) {
-  Bounds3 out;
-  for (int i = 0; i < 8; ++i)
-    out.extend(vec3(m * glm::vec4(i & 1 ? b.hi.x : b.lo.x, i & 2 ? b.hi.y : b.lo.y, i & 4 ? b.hi.z : b.lo.z, 1.0f)));
-  return out;
-}
-
-// The world box of every triangle list where it stands (a mesh's own box computed once).
-std::vector<Bounds3> placed_bounds(const std::vector<SceneGeometry::PlacedPrimitive>& placed) {
-  std::unordered_map<const TriangleMesh*, Bounds3> own;
-  std::vector<Bounds3> out;
-  for (const SceneGeometry::PlacedPrimitive& p : placed) {
-    auto it = own.find(p.mesh);
-    if (it == own.end()) it = own.emplace(p.mesh, position_bounds(*p.mesh)).first;
-    out.push_back(p.to_world == glm::mat4(1.0f) ? it->second : transformed(it->second, p.to_world));
-  }
-  return out;
-}
 
 // Rays from such a camera are finite everywhere on the film (what skipping them assumes).
 bool well_formed(const RenderCamera& c) {
@@ -54,12 +28,12 @@ double distance_to_box(const glm::dvec3& p, const glm::dvec3& lo, const glm::dve
 
 CameraCoverage::CameraCoverage(const RenderCamera& camera, const SceneGeometry& geometry,
                                const CameraCoverageParams& params) {
-  if (camera.moves() || geometry.moves() || !well_formed(camera)) return;
+  if (camera.moves() || !well_formed(camera)) return;
   all_ = false;
   x0_ = params.x0, y0_ = params.y0, width_ = params.width, height_ = params.height;
   covered_.assign(static_cast<std::size_t>(width_) * height_, 0);
   const glm::dmat4 world_to_camera = glm::inverse(glm::dmat4(camera.camera_to_world));
-  for (const Bounds3& box : placed_bounds(geometry.placed_primitives())) {
+  for (const Bounds3& box : geometry.shutter_bounds()) {
     cover_box(camera, world_to_camera, box, params);
     if (all_) break;
   }

@@ -1,12 +1,13 @@
-// Which pixels' camera rays can hit anything at all. Each triangle list's world bounding box,
+// Which pixels' camera rays can hit anything at all. Each triangle list's world box over the
+// shutter (SceneGeometry::shutter_bounds: everywhere it can be while the shutter is open),
 // projected through a still pinhole (or orthographic) camera, covers every film point whose
 // ray could reach it; a pixel whose filter footprint (and a twentieth of a pixel) meets none
 // of those rectangles sees only the background, so its camera rays need no traversal: the
-// answer is known (the image is the same bit for bit, tests/camera_coverage_test.cpp). A product shot on
-// an empty background spends most of its camera samples there: 86% of MetalRoughSpheres'.
-// A thin lens widens each rectangle by how far its rays stray from the pinhole's at the box's
-// depths. Conservative by construction: a box reaching within a small distance of the camera's
-// lens, a moving camera or scene, a non-finite camera: every pixel may hit.
+// answer is known (the image is the same bit for bit, tests/camera_coverage_test.cpp). A
+// product shot on an empty background spends most of its camera samples there: 86% of
+// MetalRoughSpheres'. A thin lens widens each rectangle by how far its rays stray from the
+// pinhole's at the box's depths. Conservative by construction: a box reaching within a small
+// distance of the camera's lens, a moving camera, a non-finite camera: every pixel may hit.
 #pragma once
 
 #include <cstdint>
@@ -26,8 +27,8 @@ struct CameraCoverageParams {
 class CameraCoverage {
  public:
   CameraCoverage() = default;  // every pixel may hit
-  // The coverage of the scene's triangles; every pixel may hit when the camera or the scene
-  // moves, or its rays may not be finite.
+  // The coverage of the scene's triangles over the shutter; every pixel may hit when the
+  // camera moves or its rays may not be finite.
   CameraCoverage(const RenderCamera& camera, const SceneGeometry& geometry, const CameraCoverageParams& params);
   // Whether a camera ray of a sample of frame pixel (fx, fy) may hit a triangle.
   bool may_hit(int fx, int fy) const {

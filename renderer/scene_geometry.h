@@ -125,6 +125,9 @@ class SceneGeometry {
     bool moves;  // its placement moves or its mesh deforms: corners() depend on the time
   };
   std::vector<PlacedPrimitive> placed_primitives() const;
+  // Each of those lists' world box over the whole shutter: everywhere its triangles can be
+  // while it is open (renderer/shutter_bounds.cpp).
+  std::vector<Bounds3> shutter_bounds() const;
 
   // Whether `next` (another frame of the same scene, as SceneDescription::animated scenes
   // have) has the structure built here: the same meshes, triangles, attributes and materials,

@@ -1,8 +1,9 @@
 // CameraCoverage: the pixels it leaves out really see nothing (checked by tracing dense rays
-// over each one's whole filter footprint and margin, and lens), it leaves out what it should
-// (the sky above a floor that runs under and behind the camera), it gives up where it must
-// (the camera or its lens inside the geometry's box), and a render that skips those pixels' rays is the same bit for
-// bit as one that traces them all, for every camera, filter, crop and background it applies to.
+// over each one's whole filter footprint and margin, lens and shutter), it leaves out what it
+// should (the sky above a floor that runs under and behind the camera), it gives up where it
+// must (the camera or its lens inside the geometry's box, a moving camera), and a render that
+// skips those pixels' rays is the same bit for bit as one that traces them all, for every
+// camera, filter, crop, background and motion it applies to.
 #include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -27,14 +28,18 @@ SceneDescription product_shot() {
   return d;
 }
 
-RenderScene& shot_scene() {
+// The scene `Make` describes under a white world, built once.
+template <SceneDescription (*Make)()>
+RenderScene& in_white_world() {
   static RenderScene* scene = [] {
     EnvironmentParams env;
     env.background = vec3(1.0f);
-    return new RenderScene(product_shot(), env);
+    return new RenderScene(Make(), env);
   }();
   return *scene;
 }
+
+RenderScene& shot_scene() { return in_white_world<product_shot>(); }
 
 CameraCoverageParams whole_frame(int w, int h, float radius) {
   CameraCoverageParams p;
@@ -45,12 +50,13 @@ CameraCoverageParams whole_frame(int w, int h, float radius) {
 }
 
 // Every pixel left out, traced for real: a grid of rays over its filter footprint (where its
-// samples can land; 9x9, or 5x5 through a lens) and, through a lens, from a 5x5 grid of lens
-// positions that reaches the disk's rim, hits nothing. Returns the number of pixels left out.
+// samples can land; 9x9, or 5x5 through a lens or in a moving scene), through a lens from a
+// 5x5 grid of lens positions that reaches the disk's rim, in a moving scene at nine times
+// over the shutter, hits nothing. Returns the number of pixels left out.
 int expect_left_out_pixels_see_nothing(const RenderScene& scene, const RenderCamera& cam, const CameraCoverageParams& p) {
   const CameraCoverage coverage(cam, *scene.geometry, p);
-  const bool lens = cam.lens_radius > 0.0f;
-  const int film_n = lens ? 5 : 9, lens_n = lens ? 5 : 1;
+  const bool lens = cam.lens_radius > 0.0f, moves = scene.geometry->moves();
+  const int film_n = lens || moves ? 5 : 9, lens_n = lens ? 5 : 1, time_n = moves ? 9 : 1;
   int left_out = 0, wrong = 0;
   for (int y = p.y0; y < p.y0 + p.height; ++y)
     for (int x = p.x0; x < p.x0 + p.width; ++x) {
@@ -59,14 +65,16 @@ int expect_left_out_pixels_see_nothing(const RenderScene& scene, const RenderCam
       const float reach = p.filter_radius;
       for (int i = 0; i < film_n; ++i)
         for (int j = 0; j < film_n; ++j)
-          for (int k = 0; k < lens_n * lens_n; ++k) {
+          for (int k = 0; k < lens_n * lens_n * time_n; ++k) {
             const float step = 2.0f * reach / (film_n - 1);
             const vec2 at(x + 0.5f - reach + step * i, y + 0.5f - reach + step * j);
-            const vec2 on_lens = lens ? vec2(k % lens_n, k / lens_n) * (0.9999999f / (lens_n - 1)) : vec2(0.5f);
+            const int l = k % (lens_n * lens_n);
+            const vec2 on_lens = lens ? vec2(l % lens_n, l / lens_n) * (0.9999999f / (lens_n - 1)) : vec2(0.5f);
+            const float time = moves ? float(k / (lens_n * lens_n)) * (0.9999999f / (time_n - 1)) : 0.0f;
             HitRecord hit;
-            const Ray ray = cam.generate_ray({at.x / p.full_width, at.y / p.full_height}, on_lens);
+            const Ray ray = cam.generate_ray({at.x / p.full_width, at.y / p.full_height}, on_lens, time);
             if (scene.geometry->intersect(ray, hit) && wrong++ == 0)
-              ADD_FAILURE() << "pixel " << x << "," << y << " left out, but a ray hits";
+              ADD_FAILURE() << "pixel " << x << "," << y << " left out, but a ray hits at time " << time;
           }
     }
   EXPECT_EQ(wrong, 0);
@@ -141,6 +149,50 @@ TEST(CameraCoverage, ThroughALensPixelsLeftOutSeeNothing) {
   EXPECT_GT(expect_left_out_pixels_see_nothing(shot_scene(), make_camera(tilted, w, h, thin_lens(0.05f, 5.0f)), frame), 0);
 }
 
+glm::mat4 translate(float x, float y, float z) { return glm::translate(glm::mat4(1.0f), vec3(x, y, z)); }
+
+// product_shot over a three-step shutter: the sphere (its vertices away from its node's
+// origin, so that turning sweeps it round) slides and turns 143 degrees per step (its path
+// leaves the box of each step's two ends), the tilted quad bends, the floor stands still.
+SceneDescription moving_shot() {
+  SceneDescription d;
+  d.motion_steps = 3;
+  const int grey = test::add_material(d, test::diffuse(vec3(0.6f)));
+  test::add_mesh(d, test::make_sphere({0.8f, 0, 0}, 0.25f, 2, grey), {translate(0.1f, 0.2f, 0)});
+  d.instances.back().motion = {translate(0.2f, 0.3f, 0) * glm::rotate(glm::mat4(1.0f), 2.5f, vec3(0, 0, 1)),
+                               translate(0.3f, 0.4f, 0) * glm::rotate(glm::mat4(1.0f), 5.0f, vec3(0, 0, 1))};
+  TriangleMesh quad = test::make_quad({-1.2f, 0.6f, -1}, {0.3f, 0.1f, 0}, {0, 0.3f, 0.2f}, grey);
+  std::vector<vec3> bent = quad.positions;
+  for (vec3& v : bent) v.y += 0.4f * (v.x + 1.2f);
+  quad.motion_positions = {bent, bent};
+  test::add_mesh(d, quad, {glm::mat4(1.0f), translate(0, 0, 0)});  // placed twice: an instanced mesh
+  test::add_mesh(d, test::make_quad({0, -1, 0}, {20, 0, 0}, {0, 0, -20}, grey));
+  return d;
+}
+
+RenderScene& moving_scene() { return in_white_world<moving_shot>(); }
+
+// Moving triangles are covered where they are at any time the shutter is open: the pixels
+// left out see nothing at nine times over it, and fewer are left out than when it is closed.
+TEST(CameraCoverage, InAMovingScenePixelsLeftOutSeeNothingAtAnyTime) {
+  const int w = 40, h = 30;
+  ASSERT_TRUE(moving_scene().geometry->moves());
+  const RenderCamera level = make_camera(test::look_at({0, 0, 5}, {0, 0, 0}, 40.0f), w, h, {});
+  const int moving = expect_left_out_pixels_see_nothing(moving_scene(), level, whole_frame(w, h, 0.75f));
+  SceneDescription closed = moving_shot();
+  closed.motion_steps = 1;  // everything where it is at the opening
+  const RenderScene still(closed, EnvironmentParams{});
+  const int at_opening = expect_left_out_pixels_see_nothing(still, level, whole_frame(w, h, 0.75f));
+  EXPECT_GT(moving, 0);
+  EXPECT_LT(moving, at_opening);
+  CameraParams lens;
+  lens.aperture = 0.2f;
+  lens.focus_distance = 4.0f;
+  EXPECT_GT(expect_left_out_pixels_see_nothing(moving_scene(), make_camera(test::look_at({2, 1, 5}, {0, 0, 0}, 40.0f), w, h, lens),
+                                               whole_frame(w, h, 1.5f)),
+            0);
+}
+
 RenderResult render(const RenderScene& scene, const Camera& camera, RenderSettings s, bool cull,
                     const CameraParams& lens = {}) {
   s.cull_camera_rays = cull;
@@ -183,6 +235,17 @@ TEST(CameraCoverage, RenderIsTheSameBitForBitWithAndWithoutCulling) {
   ortho.xmag = ortho.ymag = 2.0f;
   expect_same_render_with_fewer_rays(shot_scene(), ortho, transparent);
   expect_same_render_with_fewer_rays(shot_scene(), level, small_settings(), thin_lens(0.2f, 3.0f));
+}
+
+TEST(CameraCoverage, MotionBlurRendersTheSameAndAMovingCameraCullsNothing) {
+  const Camera level = test::look_at({0, 0, 5}, {0, 0, 0}, 40.0f);
+  expect_same_render_with_fewer_rays(moving_scene(), level, small_settings());
+  Camera moving = level;
+  moving.motion = {translate(0.2f, 0, 0) * level.camera_to_world, translate(0.4f, 0, 0) * level.camera_to_world};
+  const RenderResult all = render(moving_scene(), moving, small_settings(), false);
+  const RenderResult culled = render(moving_scene(), moving, small_settings(), true);
+  test::expect_same_image(all.image, culled.image);
+  EXPECT_EQ(culled.stats.rays, all.stats.rays);
 }
 
 TEST(CameraCoverage, EnvironmentImageAndNonFiniteBackgroundRenderTheSame) {
