@@ -27,7 +27,9 @@ int main(int argc, char** argv) {
                ": a physically based path tracer for glTF 2.0 scenes.\n\n"
                "Exit codes: 0 success, 1 internal or system failure (out of memory, disk full),\n"
                "2 bad usage or bad input (with one message naming the file or option),\n"
-               "130 interrupted.",
+               "130 interrupted.\n\n"
+               "Environment: TESSERA_ISA=auto|x86-64|x86-64-v3 chooses the build for an instruction set\n"
+               "(auto: AVX2/FMA when the CPU has them; the image is the same bit for bit).",
                "tessera"};
   app.require_subcommand(1);
   app.set_version_flag("--version", version_line());
