@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "renderer/motion.h"
+
 namespace tessera {
 namespace {
 
@@ -26,23 +28,60 @@ double distance_to_box(const glm::dvec3& p, const glm::dvec3& lo, const glm::dve
 
 }  // namespace
 
+// Where a camera moving by parts (renderer/motion.h) can be between two motion steps, seen
+// from the halfway pose: its position within `drift` of it (the translation is linear), its
+// orientation within `turn` radians (slerp turns about one axis, half the steps' angle either
+// side). Only a rigid perspective camera without a lens qualifies (false: not bounded here).
+bool CameraCoverage::moving_poses(const RenderCamera& camera, std::vector<Pose>& poses) {
+  const std::vector<AffineParts>& steps = camera.motion.steps();
+  if (camera.lens_radius > 0.0f || camera.projection != Camera::Projection::Perspective) return false;
+  for (const AffineParts& p : steps) {
+    const float off_diagonal = std::fabs(p.upper[1][0]) + std::fabs(p.upper[2][0]) + std::fabs(p.upper[2][1]);
+    const float scale = std::fabs(p.upper[0][0] - 1.0f) + std::fabs(p.upper[1][1] - 1.0f) + std::fabs(p.upper[2][2] - 1.0f);
+    if (!(off_diagonal + scale < 1e-5f)) return false;
+  }
+  for (std::size_t k = 0; k + 1 < steps.size(); ++k) {
+    Pose pose{camera, 0.0, 0.0};
+    pose.camera.motion = MotionTransform();
+    pose.camera.camera_to_world = compose(interpolate(steps[k], steps[k + 1], 0.5f));
+    const double cos_half = std::min(1.0, std::fabs(double(glm::dot(steps[k].rotation, steps[k + 1].rotation))));
+    // Widened for float: the poses are made in float, each ray's direction normalised in float.
+    pose.turn = std::acos(cos_half) * (1.0 + 1e-4) + 1e-5;
+    pose.drift = 0.5 * glm::length(glm::dvec3(steps[k + 1].translation) - glm::dvec3(steps[k].translation)) * (1.0 + 1e-4) +
+                 1e-5 * (1.0 + glm::length(glm::dvec3(steps[k].translation)));
+    if (!well_formed(pose.camera) || !std::isfinite(pose.turn) || !std::isfinite(pose.drift)) return false;
+    poses.push_back(pose);
+  }
+  return true;
+}
+
 CameraCoverage::CameraCoverage(const RenderCamera& camera, const SceneGeometry& geometry,
                                const CameraCoverageParams& params) {
-  if (camera.moves() || !well_formed(camera)) return;
+  if (!well_formed(camera)) return;
+  std::vector<Pose> poses;
+  if (!camera.moves())
+    poses.push_back({camera, 0.0, 0.0});
+  else if (!moving_poses(camera, poses))
+    return;
   all_ = false;
   x0_ = params.x0, y0_ = params.y0, width_ = params.width, height_ = params.height;
   covered_.assign(static_cast<std::size_t>(width_) * height_, 0);
-  const glm::dmat4 world_to_camera = glm::inverse(glm::dmat4(camera.camera_to_world));
-  for (const Bounds3& box : geometry.shutter_bounds()) {
-    cover_box(camera, world_to_camera, box, params);
+  const std::vector<Bounds3> boxes = geometry.shutter_bounds();
+  for (const Pose& pose : poses) {
+    const glm::dmat4 world_to_camera = glm::inverse(glm::dmat4(pose.camera.camera_to_world));
+    for (const Bounds3& box : boxes) {
+      cover_box(pose, world_to_camera, box, params);
+      if (all_) break;
+    }
     if (all_) break;
   }
   if (all_) covered_.clear();
 }
 
 // Covers the film pixels whose rays can reach `box`. A box within the camera's reach sets all_.
-void CameraCoverage::cover_box(const RenderCamera& camera, const glm::dmat4& world_to_camera, const Bounds3& box,
+void CameraCoverage::cover_box(const Pose& pose, const glm::dmat4& world_to_camera, const Bounds3& box,
                                const CameraCoverageParams& params) {
+  const RenderCamera& camera = pose.camera;
   if (box.empty()) return;
   // Widened for rounding: Embree's hits and generate_ray's directions are float.
   const double slack = 1e-5 * (glm::length(glm::dvec3(box.hi) - glm::dvec3(box.lo)) +
@@ -67,6 +106,7 @@ void CameraCoverage::cover_box(const RenderCamera& camera, const glm::dmat4& wor
   // at the pinhole ray's point on the focal plane (depth f), widened for the disk's rounding.
   view.lens = camera.lens_radius > 0.0f ? camera.lens_radius * (1.0 + 1e-4) : 0.0;
   view.focus = camera.focus_distance;
+  view.drift = pose.drift, view.turn = pose.turn;
   // A perspective ray meets a point at depth -z = |p| cos(angle to the axis); within the film
   // (and a filter's reach beyond it) that angle is bounded, so the box's points such rays can
   // reach lie deeper than `cut`: the box is cut there and the rest projected. Through a lens a
@@ -81,7 +121,15 @@ void CameraCoverage::cover_box(const RenderCamera& camera, const glm::dmat4& wor
         1.0 / std::sqrt(1.0 + (kx * view.sx) * (kx * view.sx) + (ky * view.sy) * (ky * view.sy));
     cut = 0.5 * (distance_to_box(eye, lo, hi) - view.lens) * cos_max;
     if (view.lens > 0.0) cut = std::min(cut, 0.5 * view.focus);
-      if (!(cut > 0.0)) {  // the camera (or its lens) is in or at the box
+    view.cone = std::acos(cos_max);
+    if (view.moving()) {
+      // From a position within drift of the eye, along an axis within turn of its axis, a ray
+      // reaches depth D >= (distance - drift) cos(cone + turn) - drift.
+      const double tilt = view.cone + view.turn;
+      cut = tilt < kMaxAngle ? 0.5 * ((distance_to_box(eye, lo, hi) - view.drift) * std::cos(tilt) - view.drift) : 0.0;
+      if (!(cut > view.drift)) cut = 0.0;  // too close to bound the drift's angle
+    }
+    if (!(cut > 0.0)) {  // the camera (or its lens) is in or at the box
       all_ = true;
       return;
     }
@@ -89,7 +137,7 @@ void CameraCoverage::cover_box(const RenderCamera& camera, const glm::dmat4& wor
   if (deepest < cut) return;  // all behind the camera
   // Through a lens, the blur differs with depth: the box is covered slab by slab, each with
   // its own widening (depths doubling for a perspective camera, eight even steps else).
-  const int slabs = view.lens == 0.0 ? 1 : perspective ? std::clamp(int(std::ceil(std::log2(deepest / cut))), 1, 24) : 8;
+  const int slabs = view.lens == 0.0 && !view.moving() ? 1 : perspective ? std::clamp(int(std::ceil(std::log2(deepest / cut))), 1, 24) : 8;
   for (int k = 0; k < slabs && !all_; ++k) {
     const double near = k == 0 ? cut : perspective ? cut * std::exp2(k) : cut + (deepest - cut) * k / slabs;
     const double far = k + 1 == slabs ? HUGE_VAL : perspective ? cut * std::exp2(k + 1) : cut + (deepest - cut) * (k + 1) / slabs;
@@ -132,6 +180,20 @@ bool CameraCoverage::slab_rect(const glm::dvec3 (&corner)[8], double near, doubl
       return view.perspective ? std::fabs(1.0 / d - 1.0 / view.focus) : std::fabs(1.0 - d / view.focus);
     };
     const double reach = view.lens * std::max(spread(d_lo), spread(d_hi));
+    const double grow_x = reach / view.sx * 0.5 * params.full_width, grow_y = reach / view.sy * 0.5 * params.full_height;
+    x_lo -= grow_x, x_hi += grow_x, y_lo -= grow_y, y_hi += grow_y;
+  }
+  if (view.moving()) {
+    // Seen from a position within drift of the eye, a point at depth D >= d_lo moves by at most
+    // asin(drift / D); the camera turns by at most `turn`. Within the cone of film directions
+    // widened by that angle delta, the film coordinate (tangent space) moves by at most
+    // delta / cos^2 of the widened cone's half-angle.
+    const double delta = view.turn + std::asin(std::min(1.0, view.drift / d_lo)), edge = view.cone + delta;
+    if (!(edge < kMaxAngle)) {
+      all_ = true;
+      return false;
+    }
+    const double reach = delta / (std::cos(edge) * std::cos(edge));
     const double grow_x = reach / view.sx * 0.5 * params.full_width, grow_y = reach / view.sy * 0.5 * params.full_height;
     x_lo -= grow_x, x_hi += grow_x, y_lo -= grow_y, y_hi += grow_y;
   }

@@ -6,8 +6,10 @@
 // answer is known (the image is the same bit for bit, tests/camera_coverage_test.cpp). A
 // product shot on an empty background spends most of its camera samples there: 86% of
 // MetalRoughSpheres'. A thin lens widens each rectangle by how far its rays stray from the
-// pinhole's at the box's depths. Conservative by construction: a box reaching within a small
-// distance of the camera's lens, a moving camera, a non-finite camera: every pixel may hit.
+// pinhole's at the box's depths; a moving (rigid, perspective, pinhole) camera widens them by
+// how far it can drift and turn from each pair of motion steps' halfway pose. Conservative by
+// construction: a box within a small distance of the camera or its lens, a moving camera with
+// a lens, an orthographic or a scaled one, a non-finite camera: every pixel may hit.
 #pragma once
 
 #include <cstdint>
@@ -28,7 +30,7 @@ class CameraCoverage {
  public:
   CameraCoverage() = default;  // every pixel may hit
   // The coverage of the scene's triangles over the shutter; every pixel may hit when the
-  // camera moves or its rays may not be finite.
+  // camera's rays may not be finite or its motion is not one bounded here.
   CameraCoverage(const RenderCamera& camera, const SceneGeometry& geometry, const CameraCoverageParams& params);
   // Whether a camera ray of a sample of frame pixel (fx, fy) may hit a triangle.
   bool may_hit(int fx, int fy) const {
@@ -44,13 +46,22 @@ class CameraCoverage {
   struct Rect {
     double x_lo, x_hi, y_lo, y_hi;  // film pixels
   };
+  struct Pose {  // a still camera, or a moving one's halfway pose between two motion steps
+    RenderCamera camera;
+    double drift = 0, turn = 0;  // how far from it the camera can be (scene units, radians)
+  };
   struct View {  // the camera as the projection needs it (camera space, depth D = -z)
     bool perspective = true;
     double sx = 1, sy = 1;  // film half-extent: tangents (perspective) or scene units
     double lens = 0, focus = 1;  // thin lens radius (0: pinhole) and focus distance
+    double drift = 0, turn = 0;  // a moving camera's Pose
+    double cone = 0;  // perspective: the film's (and filter reach's) half-angle from the axis
+    bool moving() const { return drift > 0 || turn > 0; }
   };
   static constexpr double kMargin = 0.05;  // pixels
-  void cover_box(const RenderCamera& camera, const glm::dmat4& world_to_camera, const Bounds3& box,
+  static constexpr double kMaxAngle = 1.5;  // radians from the axis: beyond, nothing is bounded
+  static bool moving_poses(const RenderCamera& camera, std::vector<Pose>& poses);
+  void cover_box(const Pose& pose, const glm::dmat4& world_to_camera, const Bounds3& box,
                  const CameraCoverageParams& params);
   bool slab_rect(const glm::dvec3 (&corner)[8], double near, double far, const View& view,
                  const CameraCoverageParams& params, Rect& rect);

@@ -20,7 +20,7 @@ CameraSampler::CameraSampler(const RenderScene& scene, const RenderCamera& camer
   const FrameWindow& window = settings.window;
   inv_w_ = 1.0f / (window.cropped() ? window.full_width : settings.width);
   inv_h_ = 1.0f / (window.cropped() ? window.full_height : settings.height);
-  if (settings.cull_camera_rays && !camera_moves_) {
+  if (settings.cull_camera_rays) {
     CameraCoverageParams cp;
     cp.full_width = window.cropped() ? window.full_width : settings.width;
     cp.full_height = window.cropped() ? window.full_height : settings.height;

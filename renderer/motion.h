@@ -67,6 +67,7 @@ class MotionTransform {
   explicit MotionTransform(const std::vector<glm::mat4>& steps);
   bool empty() const { return steps_.empty(); }
   glm::mat4 at(float time) const;
+  const std::vector<AffineParts>& steps() const { return steps_; }
 
  private:
   std::vector<AffineParts> steps_;
