@@ -71,6 +71,22 @@ vec2 transform_uv(const TextureTransform& t, vec2 uv) {
   return vec2(c * scaled.x + s * scaled.y, -s * scaled.x + c * scaled.y) + t.offset;
 }
 
+using Texel8 = std::array<std::uint8_t, 4>;
+
+// One row of 8-bit texels with NC channels into its place in 4x4 blocks (dst: the row's
+// first texel; texel i of the row is kBlock * kBlock apart per block, then consecutive).
+template <int NC>
+void copy_row8(const std::uint8_t* src, Texel8* dst, int width) {
+  constexpr int kB = TextureImage::kBlock;
+  for (int i = 0; i < width; ++i, src += NC) {
+    Texel8& t = dst[(i / kB) * kB * kB + i % kB];
+    if constexpr (NC == 1) t = {src[0], src[0], src[0], 255};
+    if constexpr (NC == 2) t = {src[0], src[0], src[0], src[1]};
+    if constexpr (NC == 3) t = {src[0], src[1], src[2], 255};
+    if constexpr (NC == 4) t = {src[0], src[1], src[2], src[3]};
+  }
+}
+
 }  // namespace
 
 TextureImage make_texture_image(const Image& image, ColorEncoding encoding) {
@@ -99,9 +115,18 @@ TextureImage make_texture_image(const Image& image, ColorEncoding encoding) {
   };
   if (image.bits_per_channel == 8) {
     out.texels8.resize(stored);
-    const std::uint8_t* px = image.pixels->data();
-    auto byte = [px](std::size_t i) { return px[i]; };
-    each_texel([&](std::size_t p, std::size_t at) { out.texels8[at] = expand(byte, p, std::uint8_t{255}); });
+    tbb::parallel_for(tbb::blocked_range<int>(0, image.height, 32), [&](const tbb::blocked_range<int>& rows) {
+      for (int j = rows.begin(); j != rows.end(); ++j) {
+        const std::uint8_t* src = image.pixels->data() + static_cast<std::size_t>(j) * image.width * nc;
+        Texel8* dst = &out.texels8[out.index(0, j)];
+        switch (nc) {
+          case 1: copy_row8<1>(src, dst, image.width); break;
+          case 2: copy_row8<2>(src, dst, image.width); break;
+          case 3: copy_row8<3>(src, dst, image.width); break;
+          default: copy_row8<4>(src, dst, image.width); break;
+        }
+      }
+    });
     return out;
   }
   out.texels_float.resize(stored);

@@ -145,5 +145,26 @@ TEST(Texture, GreyAndRgbExpandToRgba) {
   EXPECT_FLOAT_EQ(g.a, 50 / 255.0f);
 }
 
+// Every channel count, at a size that is not a multiple of the 4x4 blocks: each texel read
+// back is its row-major source expanded to RGBA (grey to RGB, alpha 1 when absent).
+TEST(Texture, EveryChannelCountLandsEachTexelInItsBlock) {
+  std::mt19937 rng(11);
+  const int w = 7, h = 6;
+  for (int nc = 1; nc <= 4; ++nc) {
+    std::vector<std::uint8_t> bytes(static_cast<std::size_t>(w) * h * nc);
+    for (std::uint8_t& b : bytes) b = static_cast<std::uint8_t>(rng() & 0xff);
+    const TextureImage tex = make_texture_image(image8(w, h, nc, bytes), ColorEncoding::Linear);
+    for (int j = 0; j < h; ++j)
+      for (int i = 0; i < w; ++i) {
+        const std::uint8_t* p = &bytes[(static_cast<std::size_t>(j) * w + i) * nc];
+        const bool grey = nc < 3, alpha = nc == 2 || nc == 4;
+        const int want[4] = {p[0], grey ? p[0] : p[1], grey ? p[0] : p[2], alpha ? p[nc - 1] : 255};
+        const vec4 got = tex.texel(i, j);
+        for (int c = 0; c < 4; ++c)
+          EXPECT_EQ(std::lround(got[c] * 255.0f), want[c]) << nc << " channels, texel " << i << "," << j << " channel " << c;
+      }
+  }
+}
+
 }  // namespace
 }  // namespace tessera
