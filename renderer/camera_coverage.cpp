@@ -135,9 +135,12 @@ void CameraCoverage::cover_box(const Pose& pose, const glm::dmat4& world_to_came
     }
   }
   if (deepest < cut) return;  // all behind the camera
-  // Through a lens, the blur differs with depth: the box is covered slab by slab, each with
-  // its own widening (depths doubling for a perspective camera, eight even steps else).
-  const int slabs = view.lens == 0.0 && !view.moving() ? 1 : perspective ? std::clamp(int(std::ceil(std::log2(deepest / cut))), 1, 24) : 8;
+  // Through a lens or from a moving camera, the widening differs with depth: the box is covered
+  // slab by slab, each with its own (depths doubling for a perspective camera, eight even
+  // steps else).
+  const int slabs = view.lens == 0.0 && !view.moving() ? 1
+                    : perspective                         ? std::clamp(int(std::ceil(std::log2(deepest / cut))), 1, 24)
+                                                          : 8;
   for (int k = 0; k < slabs && !all_; ++k) {
     const double near = k == 0 ? cut : perspective ? cut * std::exp2(k) : cut + (deepest - cut) * k / slabs;
     const double far = k + 1 == slabs ? HUGE_VAL : perspective ? cut * std::exp2(k + 1) : cut + (deepest - cut) * (k + 1) / slabs;
