@@ -69,8 +69,9 @@ CameraCoverage::CameraCoverage(const RenderCamera& camera, const SceneGeometry& 
   const std::vector<Bounds3> boxes = geometry.shutter_bounds();
   for (const Pose& pose : poses) {
     const glm::dmat4 world_to_camera = glm::inverse(glm::dmat4(pose.camera.camera_to_world));
+    const View view = make_view(pose, params);
     for (const Bounds3& box : boxes) {
-      cover_box(pose, world_to_camera, box, params);
+      cover_box(view, world_to_camera, box, params);
       if (all_) break;
     }
     if (all_) break;
@@ -78,10 +79,45 @@ CameraCoverage::CameraCoverage(const RenderCamera& camera, const SceneGeometry& 
   if (all_) covered_.clear();
 }
 
-// Covers the film pixels whose rays can reach `box`. A box within the camera's reach sets all_.
-void CameraCoverage::cover_box(const Pose& pose, const glm::dmat4& world_to_camera, const Bounds3& box,
-                               const CameraCoverageParams& params) {
+// The pose as the projection needs it.
+CameraCoverage::View CameraCoverage::make_view(const Pose& pose, const CameraCoverageParams& params) {
   const RenderCamera& camera = pose.camera;
+  View view;
+  view.perspective = camera.projection == Camera::Projection::Perspective;
+  view.sx = view.perspective ? double(camera.tan_half_fov_y) * camera.aspect : double(camera.half_height) * camera.aspect;
+  view.sy = view.perspective ? double(camera.tan_half_fov_y) : double(camera.half_height);
+  // A thin lens moves a ray's origin by up to its radius in the lens plane (z = 0) and aims it
+  // at the pinhole ray's point on the focal plane (depth f), widened for the disk's rounding.
+  view.lens = camera.lens_radius > 0.0f ? camera.lens_radius * (1.0 + 1e-4) : 0.0;
+  view.focus = camera.focus_distance;
+  view.drift = pose.drift, view.turn = pose.turn;
+  view.eye = glm::dvec3(camera.camera_to_world[3]);
+  const double kx = 1.0 + 2.0 * (params.filter_radius + 2.0) / params.full_width;
+  const double ky = 1.0 + 2.0 * (params.filter_radius + 2.0) / params.full_height;
+  view.cos_max = 1.0 / std::sqrt(1.0 + (kx * view.sx) * (kx * view.sx) + (ky * view.sy) * (ky * view.sy));
+  view.cone = std::acos(view.cos_max);
+  return view;
+}
+
+// A perspective ray meets a point at depth -z = |p| cos(angle to the axis); within the film
+// (and a filter's reach beyond it) that angle is bounded, so the points of a box `distance`
+// from the eye that rays can reach lie deeper than this (0: none is known). Through a lens a
+// point at depth D < f is at most lens + D / cos_max from the camera, and one beyond f is
+// deeper than f. From a position within drift of the eye, along an axis within turn of its
+// axis, a ray reaches depth D >= (distance - drift) cos(cone + turn) - drift.
+double CameraCoverage::cut_depth(const View& view, double distance) {
+  if (view.moving()) {
+    const double tilt = view.cone + view.turn;
+    const double cut = tilt < kMaxAngle ? 0.5 * ((distance - view.drift) * std::cos(tilt) - view.drift) : 0.0;
+    return cut > view.drift ? cut : 0.0;  // closer, the drift's angle is not bounded
+  }
+  const double cut = 0.5 * (distance - view.lens) * view.cos_max;
+  return view.lens > 0.0 ? std::min(cut, 0.5 * view.focus) : cut;
+}
+
+// Covers the film pixels whose rays can reach `box`. A box within the camera's reach sets all_.
+void CameraCoverage::cover_box(const View& view, const glm::dmat4& world_to_camera, const Bounds3& box,
+                               const CameraCoverageParams& params) {
   if (box.empty()) return;
   // Widened for rounding: Embree's hits and generate_ray's directions are float.
   const double slack = 1e-5 * (glm::length(glm::dvec3(box.hi) - glm::dvec3(box.lo)) +
@@ -97,55 +133,25 @@ void CameraCoverage::cover_box(const Pose& pose, const glm::dmat4& world_to_came
     }
     deepest = std::max(deepest, -corner[i].z);
   }
-  const bool perspective = camera.projection == Camera::Projection::Perspective;
-  View view;
-  view.perspective = perspective;
-  view.sx = perspective ? double(camera.tan_half_fov_y) * camera.aspect : double(camera.half_height) * camera.aspect;
-  view.sy = perspective ? double(camera.tan_half_fov_y) : double(camera.half_height);
-  // A thin lens moves a ray's origin by up to its radius in the lens plane (z = 0) and aims it
-  // at the pinhole ray's point on the focal plane (depth f), widened for the disk's rounding.
-  view.lens = camera.lens_radius > 0.0f ? camera.lens_radius * (1.0 + 1e-4) : 0.0;
-  view.focus = camera.focus_distance;
-  view.drift = pose.drift, view.turn = pose.turn;
-  // A perspective ray meets a point at depth -z = |p| cos(angle to the axis); within the film
-  // (and a filter's reach beyond it) that angle is bounded, so the box's points such rays can
-  // reach lie deeper than `cut`: the box is cut there and the rest projected. Through a lens a
-  // point at depth D < f is at most lens + D / cos_max from the camera, and one beyond f is
-  // deeper than f. Orthographic rays start on z = 0.
-  double cut = 0.0;
-  if (perspective) {
-    const glm::dvec3 eye(camera.camera_to_world[3]);
-    const double kx = 1.0 + 2.0 * (params.filter_radius + 2.0) / params.full_width;
-    const double ky = 1.0 + 2.0 * (params.filter_radius + 2.0) / params.full_height;
-    const double cos_max =
-        1.0 / std::sqrt(1.0 + (kx * view.sx) * (kx * view.sx) + (ky * view.sy) * (ky * view.sy));
-    cut = 0.5 * (distance_to_box(eye, lo, hi) - view.lens) * cos_max;
-    if (view.lens > 0.0) cut = std::min(cut, 0.5 * view.focus);
-    view.cone = std::acos(cos_max);
-    if (view.moving()) {
-      // From a position within drift of the eye, along an axis within turn of its axis, a ray
-      // reaches depth D >= (distance - drift) cos(cone + turn) - drift.
-      const double tilt = view.cone + view.turn;
-      cut = tilt < kMaxAngle ? 0.5 * ((distance_to_box(eye, lo, hi) - view.drift) * std::cos(tilt) - view.drift) : 0.0;
-      if (!(cut > view.drift)) cut = 0.0;  // too close to bound the drift's angle
-    }
-    if (!(cut > 0.0)) {  // the camera (or its lens) is in or at the box
-      all_ = true;
-      return;
-    }
+  // The box is cut at that depth and the rest projected; orthographic rays start on z = 0.
+  const double cut = view.perspective ? cut_depth(view, distance_to_box(view.eye, lo, hi)) : 0.0;
+  if (view.perspective && !(cut > 0.0)) {  // the camera (or its lens) is in or at the box
+    all_ = true;
+    return;
   }
   if (deepest < cut) return;  // all behind the camera
   // Through a lens or from a moving camera, the widening differs with depth: the box is covered
   // slab by slab, each with its own (depths doubling for a perspective camera, eight even
   // steps else).
   const int slabs = view.lens == 0.0 && !view.moving() ? 1
-                    : perspective                         ? std::clamp(int(std::ceil(std::log2(deepest / cut))), 1, 24)
+                    : view.perspective                    ? std::clamp(int(std::ceil(std::log2(deepest / cut))), 1, 24)
                                                           : 8;
+  auto depth = [&](int k) {
+    return k == slabs ? HUGE_VAL : view.perspective ? cut * std::exp2(k) : cut + (deepest - cut) * k / slabs;
+  };
   for (int k = 0; k < slabs && !all_; ++k) {
-    const double near = k == 0 ? cut : perspective ? cut * std::exp2(k) : cut + (deepest - cut) * k / slabs;
-    const double far = k + 1 == slabs ? HUGE_VAL : perspective ? cut * std::exp2(k + 1) : cut + (deepest - cut) * (k + 1) / slabs;
     Rect r;
-    if (slab_rect(corner, near, far, view, params, r)) cover_rect(r, params);
+    if (slab_rect(corner, depth(k), depth(k + 1), view, params, r)) cover_rect(r, params);
   }
 }
 

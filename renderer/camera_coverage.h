@@ -55,13 +55,16 @@ class CameraCoverage {
     double sx = 1, sy = 1;  // film half-extent: tangents (perspective) or scene units
     double lens = 0, focus = 1;  // thin lens radius (0: pinhole) and focus distance
     double drift = 0, turn = 0;  // a moving camera's Pose
-    double cone = 0;  // perspective: the film's (and filter reach's) half-angle from the axis
+    glm::dvec3 eye{0.0};  // the camera's position (world)
+    double cos_max = 1, cone = 0;  // perspective: the film's (and filter reach's) half-angle from the axis
     bool moving() const { return drift > 0 || turn > 0; }
   };
   static constexpr double kMargin = 0.05;  // pixels
   static constexpr double kMaxAngle = 1.5;  // radians from the axis: beyond, nothing is bounded
   static bool moving_poses(const RenderCamera& camera, std::vector<Pose>& poses);
-  void cover_box(const Pose& pose, const glm::dmat4& world_to_camera, const Bounds3& box,
+  static View make_view(const Pose& pose, const CameraCoverageParams& params);
+  static double cut_depth(const View& view, double distance);
+  void cover_box(const View& view, const glm::dmat4& world_to_camera, const Bounds3& box,
                  const CameraCoverageParams& params);
   bool slab_rect(const glm::dvec3 (&corner)[8], double near, double far, const View& view,
                  const CameraCoverageParams& params, Rect& rect);
