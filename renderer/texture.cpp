@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cstring>
+#include <type_traits>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -71,19 +72,39 @@ vec2 transform_uv(const TextureTransform& t, vec2 uv) {
   return vec2(c * scaled.x + s * scaled.y, -s * scaled.x + c * scaled.y) + t.offset;
 }
 
-using Texel8 = std::array<std::uint8_t, 4>;
+// A texel of NC channels (grey, grey+alpha, RGB or RGBA) as RGBA; value(k) reads channel k.
+template <int NC, typename T, typename Value>
+std::array<T, 4> rgba(const Value& value, T one) {
+  if constexpr (NC == 1) return {value(0), value(0), value(0), one};
+  else if constexpr (NC == 2) return {value(0), value(0), value(0), value(1)};
+  else if constexpr (NC == 3) return {value(0), value(1), value(2), one};
+  else return {value(0), value(1), value(2), value(3)};
+}
 
-// One row of 8-bit texels with NC channels into its place in 4x4 blocks (dst: the row's
-// first texel; texel i of the row is kBlock * kBlock apart per block, then consecutive).
-template <int NC>
-void copy_row8(const std::uint8_t* src, Texel8* dst, int width) {
+// Every texel of an NC-channel image, rows in parallel (a 2048^2 texture is 4 M texels), each
+// row's place in the 4x4 blocks found once: store(at, rgba) with channel i read by read(i).
+template <int NC, typename T, typename Read, typename Store>
+void convert_texels(const Image& image, const TextureImage& out, T one, const Read& read, const Store& store) {
   constexpr int kB = TextureImage::kBlock;
-  for (int i = 0; i < width; ++i, src += NC) {
-    Texel8& t = dst[(i / kB) * kB * kB + i % kB];
-    if constexpr (NC == 1) t = {src[0], src[0], src[0], 255};
-    if constexpr (NC == 2) t = {src[0], src[0], src[0], src[1]};
-    if constexpr (NC == 3) t = {src[0], src[1], src[2], 255};
-    if constexpr (NC == 4) t = {src[0], src[1], src[2], src[3]};
+  tbb::parallel_for(tbb::blocked_range<int>(0, image.height, 32), [&](const tbb::blocked_range<int>& rows) {
+    const unsigned width = image.width;  // a local: stores of bytes may alias `image`, not it
+    for (int j = rows.begin(); j != rows.end(); ++j) {
+      const std::size_t row = out.index(0, j);
+      std::size_t p = static_cast<std::size_t>(j) * width * NC;  // the texel's first channel
+      for (unsigned i = 0; i < width; ++i, p += NC)
+        store(row + (i / kB) * kB * kB + i % kB, rgba<NC>([&](int k) { return read(p + k); }, one));
+    }
+  });
+}
+
+// convert(std::integral_constant<int, NC>) for the image's channel count NC.
+template <typename Convert>
+void with_channel_count(int nc, const Convert& convert) {
+  switch (nc) {
+    case 1: return convert(std::integral_constant<int, 1>{});
+    case 2: return convert(std::integral_constant<int, 2>{});
+    case 3: return convert(std::integral_constant<int, 3>{});
+    default: return convert(std::integral_constant<int, 4>{});
   }
 }
 
@@ -97,46 +118,26 @@ TextureImage make_texture_image(const Image& image, ColorEncoding encoding) {
   out.blocks_x = (image.width + TextureImage::kBlock - 1) / TextureImage::kBlock;
   const int blocks_y = (image.height + TextureImage::kBlock - 1) / TextureImage::kBlock;
   const std::size_t stored = static_cast<std::size_t>(out.blocks_x) * blocks_y * TextureImage::kBlock * TextureImage::kBlock;
-  const int nc = image.channels;
-  auto expand = [nc](auto&& value, std::size_t p, auto one) {  // grey, grey+alpha, RGB -> RGBA
-    using T = decltype(one);
-    const T g = value(p * nc);
-    if (nc == 1) return std::array<T, 4>{g, g, g, one};
-    if (nc == 2) return std::array<T, 4>{g, g, g, value(p * nc + 1)};
-    return std::array<T, 4>{g, value(p * nc + 1), value(p * nc + 2), nc == 4 ? value(p * nc + 3) : one};
-  };
-  // Rows of texels in parallel: a 2048^2 texture is 4 M of them. p is the source's row-major
-  // index, `at` where the texel is stored.
-  auto each_texel = [&](auto&& convert) {
-    tbb::parallel_for(tbb::blocked_range<int>(0, image.height, 32), [&](const tbb::blocked_range<int>& rows) {
-      for (int j = rows.begin(); j != rows.end(); ++j)
-        for (int i = 0; i < image.width; ++i) convert(static_cast<std::size_t>(j) * image.width + i, out.index(i, j));
-    });
-  };
   if (image.bits_per_channel == 8) {
     out.texels8.resize(stored);
-    tbb::parallel_for(tbb::blocked_range<int>(0, image.height, 32), [&](const tbb::blocked_range<int>& rows) {
-      for (int j = rows.begin(); j != rows.end(); ++j) {
-        const std::uint8_t* src = image.pixels->data() + static_cast<std::size_t>(j) * image.width * nc;
-        Texel8* dst = &out.texels8[out.index(0, j)];
-        switch (nc) {
-          case 1: copy_row8<1>(src, dst, image.width); break;
-          case 2: copy_row8<2>(src, dst, image.width); break;
-          case 3: copy_row8<3>(src, dst, image.width); break;
-          default: copy_row8<4>(src, dst, image.width); break;
-        }
-      }
+    const std::uint8_t* px = image.pixels->data();
+    std::array<std::uint8_t, 4>* texels = out.texels8.data();  // a local pointer: stores of bytes may alias `out`
+    with_channel_count(image.channels, [&](auto nc) {
+      convert_texels<decltype(nc)::value>(image, out, std::uint8_t{255}, [px](std::size_t i) { return px[i]; },
+                                          [texels](std::size_t at, const std::array<std::uint8_t, 4>& t) { texels[at] = t; });
     });
     return out;
   }
   out.texels_float.resize(stored);
-  auto value = [&](std::size_t i) { return channel(image, i); };
-  each_texel([&](std::size_t p, std::size_t at) {
-    const std::array<float, 4> t = expand(value, p, 1.0f);
-    vec4 c(t[0], t[1], t[2], t[3]);
-    if (encoding == ColorEncoding::SRGB)
-      for (int k = 0; k < 3; ++k) c[k] = srgb_to_linear(c[k]);
-    out.texels_float[at] = c;
+  with_channel_count(image.channels, [&](auto nc) {
+    convert_texels<decltype(nc)::value>(
+        image, out, 1.0f, [&](std::size_t i) { return channel(image, i); },
+        [&](std::size_t at, const std::array<float, 4>& t) {
+          vec4 c(t[0], t[1], t[2], t[3]);
+          if (encoding == ColorEncoding::SRGB)
+            for (int k = 0; k < 3; ++k) c[k] = srgb_to_linear(c[k]);
+          out.texels_float[at] = c;
+        });
   });
   return out;
 }
