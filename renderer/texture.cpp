@@ -144,25 +144,58 @@ TextureImage make_texture_image(const Image& image, ColorEncoding encoding) {
 
 vec4 TextureImage::texel(int i, int j) const { return decode_texel(*this, index(i, j)); }
 
-vec4 sample_texture(const TextureImage& image, const TextureRef& ref, vec2 uv) {
+namespace {
+
+// Where a lookup at uv reads: the bilinear's four texels (or the nearest one, in at[0]) and
+// the weights' fractions.
+struct TexelQuad {
+  std::size_t at[4];
+  float dx, dy;
+};
+
+TexelQuad locate(const TextureImage& image, const TextureRef& ref, vec2 uv) {
   uv = transform_uv(ref.transform, uv);
   if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) uv = vec2(0.0f);
   // Keep coordinates in int range before flooring; wrapping makes far values equivalent
   // (fmod returns smaller values unchanged: it is skipped for them, a division saved).
   auto in_range = [](float v) { return std::fabs(v) < 0x1p24f ? v : std::fmod(v, 0x1p24f); };
   const float x = in_range(uv.x * image.width - 0.5f), y = in_range(uv.y * image.height - 0.5f);
-  const float fx = std::floor(x), fy = std::floor(y);
-  const float dx = x - fx, dy = y - fy;
-  const int i = static_cast<int>(fx), j = static_cast<int>(fy);
+  // floor(), exact below 2^24 (the generic x86-64 build has no instruction for it).
+  const int i = static_cast<int>(x) - (x < static_cast<int>(x)), j = static_cast<int>(y) - (y < static_cast<int>(y));
+  TexelQuad q;
+  q.dx = x - static_cast<float>(i);
+  q.dy = y - static_cast<float>(j);
   // Inside the image every wrap mode is the identity: only texels past an edge are wrapped.
   auto column = [&](int c) { return c >= 0 && c < image.width ? c : wrap(c, image.width, ref.wrap_s); };
   auto row = [&](int r) { return r >= 0 && r < image.height ? r : wrap(r, image.height, ref.wrap_t); };
-  if (ref.filter == FilterMode::Nearest)
-    return decode_texel(image, image.index(column(i + (dx >= 0.5f)), row(j + (dy >= 0.5f))));
+  if (ref.filter == FilterMode::Nearest) {
+    q.at[0] = q.at[1] = q.at[2] = q.at[3] = image.index(column(i + (q.dx >= 0.5f)), row(j + (q.dy >= 0.5f)));
+    return q;
+  }
   const int i0 = column(i), i1 = column(i + 1), j0 = row(j), j1 = row(j + 1);
-  return (1 - dx) * (1 - dy) * decode_texel(image, image.index(i0, j0)) +
-         dx * (1 - dy) * decode_texel(image, image.index(i1, j0)) +
-         (1 - dx) * dy * decode_texel(image, image.index(i0, j1)) + dx * dy * decode_texel(image, image.index(i1, j1));
+  q.at[0] = image.index(i0, j0);
+  q.at[1] = image.index(i1, j0);
+  q.at[2] = image.index(i0, j1);
+  q.at[3] = image.index(i1, j1);
+  return q;
+}
+
+}  // namespace
+
+vec4 sample_texture(const TextureImage& image, const TextureRef& ref, vec2 uv) {
+  const TexelQuad q = locate(image, ref, uv);
+  if (ref.filter == FilterMode::Nearest) return decode_texel(image, q.at[0]);
+  const float dx = q.dx, dy = q.dy;
+  return (1 - dx) * (1 - dy) * decode_texel(image, q.at[0]) + dx * (1 - dy) * decode_texel(image, q.at[1]) +
+         (1 - dx) * dy * decode_texel(image, q.at[2]) + dx * dy * decode_texel(image, q.at[3]);
+}
+
+void prefetch_texture(const TextureImage& image, const TextureRef& ref, vec2 uv) {
+  const TexelQuad q = locate(image, ref, uv);
+  for (std::size_t at : q.at) {
+    if (image.texels8.empty()) __builtin_prefetch(&image.texels_float[at]);
+    else __builtin_prefetch(&image.texels8[at]);
+  }
 }
 
 }  // namespace tessera

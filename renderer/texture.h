@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "renderer/cache_line_allocator.h"
 #include "renderer/math.h"
 #include "renderer/scene/scene.h"
 
@@ -22,8 +23,10 @@ struct TextureImage {
   int width = 0, height = 0;
   int blocks_x = 0;  // blocks per block row
   ColorEncoding encoding = ColorEncoding::Linear;
-  std::vector<std::array<std::uint8_t, 4>> texels8;  // by block, block rows top first
-  std::vector<vec4> texels_float;  // linear, when the source has more than 8 bits
+  // By block, block rows top first; every block starts a cache line. Texels of the last
+  // block column and row beyond the image are never written nor read.
+  std::vector<std::array<std::uint8_t, 4>, CacheLineAllocator<std::array<std::uint8_t, 4>>> texels8;
+  std::vector<vec4, CacheLineAllocator<vec4>> texels_float;  // linear, when the source has more than 8 bits
 
   bool empty() const { return width == 0; }
   std::size_t index(int i, int j) const {  // texel (column i, row j from the top; both >= 0)
@@ -40,6 +43,10 @@ TextureImage make_texture_image(const Image& image, ColorEncoding encoding);
 
 // Bilinear (or nearest) lookup with wrap modes and KHR_texture_transform.
 vec4 sample_texture(const TextureImage& image, const TextureRef& ref, vec2 uv);
+// Starts loading the texels sample_texture(image, ref, uv) will read. Called for each of a
+// hit's textures before the first lookup, it overlaps their cache misses, which otherwise
+// come one after the other (each lookup waits for its texels before the next one starts).
+void prefetch_texture(const TextureImage& image, const TextureRef& ref, vec2 uv);
 
 float srgb_to_linear(float v);
 

@@ -145,6 +145,22 @@ TEST(Texture, GreyAndRgbExpandToRgba) {
   EXPECT_FLOAT_EQ(g.a, 50 / 255.0f);
 }
 
+// Each 4x4 block of 8-bit texels (64 bytes) is one cache line only if the storage starts on
+// one: malloc's 16-byte alignment would split every block over two lines.
+TEST(Texture, TexelBlocksStartOnCacheLines) {
+  for (int size : {4, 5, 64, 300, 1024}) {
+    const TextureImage bytes = make_texture_image(image8(size, size, 4, std::vector<std::uint8_t>(std::size_t(size) * size * 4, 7)),
+                                                  ColorEncoding::Linear);
+    EXPECT_EQ(reinterpret_cast<std::uintptr_t>(bytes.texels8.data()) % 64, 0u) << size;
+    Image floats;
+    floats.width = floats.height = size;
+    floats.channels = 4;
+    floats.bits_per_channel = 32;
+    floats.pixels = std::make_shared<std::vector<std::uint8_t>>(std::size_t(size) * size * 16, 0);
+    EXPECT_EQ(reinterpret_cast<std::uintptr_t>(make_texture_image(floats, ColorEncoding::Linear).texels_float.data()) % 64, 0u) << size;
+  }
+}
+
 // Every channel count, at a size that is not a multiple of the 4x4 blocks: each texel read
 // back is its row-major source expanded to RGBA (grey to RGB, alpha 1 when absent).
 TEST(Texture, EveryChannelCountLandsEachTexelInItsBlock) {

@@ -52,6 +52,9 @@ MaterialTable::MaterialTable(const SceneDescription& scene) : materials_(scene.m
   for (const Material& m : materials_) {
     constant_.push_back(!textured(m));
     constant_point_.push_back(constant_.back() ? evaluate(m, plain) : ShadingPoint{});
+    texture_uses_.emplace_back();
+    for (const TextureSlot& slot : texture_slots(m))
+      if (slot.ref->present()) texture_uses_.back().push_back({&(slot.srgb ? srgb_ : linear_)[slot.ref->image], slot.ref});
   }
 }
 
@@ -137,6 +140,11 @@ ShadingPoint MaterialTable::evaluate(const SurfaceHit& hit) const {
   if (hit.color != vec4(1.0f)) set_base_color(m, hit, sp);
   if (!m.unlit && m.anisotropy_strength > 0.0f) sp.anisotropy_direction = anisotropy_direction(m, hit, sp.anisotropy);
   return sp;
+}
+
+void MaterialTable::prefetch_textures(const SurfaceHit& hit) const {
+  if (hit.material < 0) return;
+  for (const TextureUse& use : texture_uses_[hit.material]) prefetch_texture(*use.image, *use.ref, hit.uv[use.ref->texcoord]);
 }
 
 void MaterialTable::set_base_color(const Material& m, const SurfaceHit& hit, ShadingPoint& sp) const {

@@ -42,6 +42,9 @@ class MaterialTable {
   explicit MaterialTable(const SceneDescription& scene);
 
   ShadingPoint evaluate(const SurfaceHit& hit) const;
+  // Starts loading the texels evaluate(hit) will read, every texture's at once: their cache
+  // misses then overlap, where each lookup would otherwise wait for the one before it.
+  void prefetch_textures(const SurfaceHit& hit) const;
   // evaluate(hit).emission alone (one texture, not every one): what light sampling needs.
   vec3 emission(const SurfaceHit& hit) const { return emission(material(hit.material), hit); }
   const Material& material(int index) const;
@@ -66,6 +69,12 @@ class MaterialTable {
   // `constant_` false where the material has a texture).
   std::vector<ShadingPoint> constant_point_;
   std::vector<char> constant_;
+  // Each material's textures, in the encoding each is read in (by material index).
+  struct TextureUse {
+    const TextureImage* image;
+    const TextureRef* ref;
+  };
+  std::vector<std::vector<TextureUse>> texture_uses_;
   std::vector<TextureImage> srgb_, linear_;  // by image index; empty where unused
 };
 

@@ -165,11 +165,12 @@ vec3 finished_sample(vec3 radiance, const PathTracerParams& params, PathCounters
 
 vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ray,
                 Sampler& rng, FirstHit& first, PathCounters& counters, PathRecord* record) {
-  return trace_path_from(scene, params, ray, nullptr, rng, first, counters, record);
+  return trace_path_from(scene, params, ray, nullptr, nullptr, rng, first, counters, record);
 }
 
 vec3 trace_path_from(const RenderScene& scene, const PathTracerParams& params, Ray ray, const ClosestHit* known,
-                     Sampler& rng, FirstHit& first, PathCounters& counters, PathRecord* record) {
+                     const SurfaceHit* known_surface, Sampler& rng, FirstHit& first, PathCounters& counters,
+                     PathRecord* record) {
   vec3 radiance(0.0f), throughput(1.0f);
   vec3 absorption(0.0f);  // of the volume the ray travels in (Beer-Lambert); 0 = none
   float bsdf_pdf = 0.0f;  // solid-angle pdf of the direction that led here; 0 = camera ray
@@ -219,7 +220,9 @@ vec3 trace_path_from(const RenderScene& scene, const PathTracerParams& params, R
       if (features_pending && (bounce > 0 || passes > 0)) first.albedo = feature_weight * scene.environment.radiance(ray.direction);
       break;
     }
-    SurfaceHit s = scene.geometry->surface(ray, hit);
+    SurfaceHit s = known_surface ? *known_surface : scene.geometry->surface(ray, hit);
+    if (!known_surface) scene.materials.prefetch_textures(s);
+    known_surface = nullptr;  // the first hit's only
     ShadingPoint sp = scene.materials.evaluate(s);
     PathVertex* vertex = nullptr;
     if (record) {
