@@ -42,6 +42,7 @@ int wrap(int i, int n, WrapMode mode) {
       return m < n ? m : period - 1 - m;
     }
     default: {
+      if ((n & (n - 1)) == 0) return i & (n - 1);  // a power of two: the same, without a division
       const int m = i % n;
       return m < 0 ? m + n : m;
     }
