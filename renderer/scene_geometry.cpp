@@ -692,13 +692,23 @@ SurfaceHit SceneGeometry::surface(const Ray& ray, const HitRecord& hit) const {
   return s;
 }
 
-SurfaceHit SceneGeometry::texture_point(const HitRecord& hit) const {
+TextureCorners SceneGeometry::texture_corners(const HitRecord& hit) const {
   Placement scratch{nullptr};
-  const Placement& pl = placement(hit, scratch);
+  const TriangleMesh& m = *placement(hit, scratch).mesh;
+  const std::uint32_t* idx = &m.indices[3 * hit.prim];
+  TextureCorners c;
+  for (int k = 0; k < 3; ++k) {
+    if (!m.texcoords0.empty()) c.uv[0][k] = m.texcoords0[idx[k]];
+    if (!m.texcoords1.empty()) c.uv[1][k] = m.texcoords1[idx[k]];
+  }
+  c.material = m.material;
+  return c;
+}
+
+SurfaceHit TextureCorners::at(float u, float v) const {
   SurfaceHit s;
-  texture_attributes(*pl.mesh, &pl.mesh->indices[3 * hit.prim], hit.u, hit.v, s.uv, s.color);
-  s.material = pl.mesh->material;
-  s.t = hit.t;
+  for (int k = 0; k < 2; ++k) s.uv[k] = (1.0f - u - v) * uv[k][0] + u * uv[k][1] + v * uv[k][2];  // as interpolate()
+  s.material = material;
   return s;
 }
 

@@ -48,6 +48,16 @@ struct SurfaceHit {
   float t = 0.0f;
 };
 
+// A triangle's texture coordinates at its corners and its material: what its material's
+// textures read at any point of it, as surface() gives them (not the vertex colour). An
+// emitter keeps its own, so that a light sample evaluates the emission without the mesh
+// (placement, indices, coordinates: three dependent cache misses).
+struct TextureCorners {
+  vec2 uv[2][3]{};  // TEXCOORD_0 and _1 at the three corners; zero where the mesh has none
+  int material = -1;
+  SurfaceHit at(float u, float v) const;  // u, v: the weights of the second and third corner
+};
+
 class MaterialTable;
 
 // What a shadow ray passes at a thin-walled transmissive surface: its straight-through
@@ -106,9 +116,8 @@ class SceneGeometry {
                      const void* user) const;
   // The surface at the hit, where it is at hit.time.
   SurfaceHit surface(const Ray& ray, const HitRecord& hit) const;
-  // Only what a material's textures read there (texture coordinates, vertex colour, the
-  // material), as surface() gives them: light sampling's emission needs no position or frame.
-  SurfaceHit texture_point(const HitRecord& hit) const;
+  // The texture coordinates and material of the hit's triangle (geom, instance, prim).
+  TextureCorners texture_corners(const HitRecord& hit) const;
   // The world-space corners of the hit's triangle (geom, instance, prim) at hit.time, in the
   // order surface() reads them (its u and v are the weights of the second and third).
   struct Corners {

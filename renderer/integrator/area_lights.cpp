@@ -16,15 +16,10 @@ float emitted_luminance(const Material& m) {
 // centre and halfway to each corner): emitters mostly dark in their texture (a helmet's
 // glowing details) are then rarely chosen. A small floor keeps every emitter reachable by
 // light sampling alone; with MIS, BSDF sampling covers whatever light sampling misses.
-double textured_luminance(const SceneGeometry& geometry, const MaterialTable& materials, const Material& m,
-                          HitRecord where) {
+double textured_luminance(const MaterialTable& materials, const Material& m, const TextureCorners& texturing) {
   static const float kPoints[4][2] = {{1 / 3.f, 1 / 3.f}, {2 / 3.f, 1 / 6.f}, {1 / 6.f, 2 / 3.f}, {1 / 6.f, 1 / 6.f}};
   double sum = 0.0;
-  for (const auto& b : kPoints) {
-    where.u = b[0];
-    where.v = b[1];
-    sum += luminance(materials.emission(geometry.texture_point(where)));
-  }
+  for (const auto& b : kPoints) sum += luminance(materials.emission(texturing.at(b[0], b[1])));
   return std::max(sum / 4.0, 0.01 * emitted_luminance(m));
 }
 
@@ -61,7 +56,8 @@ AreaLights::AreaLights(const SceneDescription& scene, const SceneGeometry& geome
       const SurfaceHit centre = geometry.surface(Ray{p0, vec3(0, 0, 1)}, where);
       const vec3 constant = m.emissive_factor * m.emissive_strength;
       const bool textured = m.emissive_texture.present();
-      Triangle tri{where, {p0, p1 - p0, p2 - p0, centre.ng, area}, constant, textured, m.double_sided, pp.moves, 1.0f};
+      const TextureCorners texturing = textured ? geometry.texture_corners(where) : TextureCorners{};
+      Triangle tri{where, {p0, p1 - p0, p2 - p0, centre.ng, area}, constant, textured, texturing, m.double_sided, pp.moves, 1.0f};
       double mean_area = area;
       if (pp.moves) {  // its front side as at the opening; chosen by its mean area over the steps
         tri.side = glm::dot(centre.ng, glm::cross(p1 - p0, p2 - p0)) < 0.0f ? -1.0f : 1.0f;
@@ -81,7 +77,7 @@ AreaLights::AreaLights(const SceneDescription& scene, const SceneGeometry& geome
   // helmet whose whole body is emissive has 15,000 of them).
   tbb::parallel_for(std::size_t{0}, textured_triangles.size(), [&](std::size_t k) {
     const auto [i, m] = textured_triangles[k];
-    power[i] *= textured_luminance(geometry, materials, *m, triangles_[i].where);
+    power[i] *= textured_luminance(materials, *m, triangles_[i].texturing);
   });
   by_power_ = Distribution1D(std::move(power));
   if (by_power_.empty()) {
@@ -123,16 +119,7 @@ bool AreaLights::sample(const vec3& p, float time, float u_select, const vec2& u
   if (!(cos_light > 0.0f || tri.double_sided)) return false;  // the back of a one-sided emitter
   const float abs_cos = std::fabs(cos_light);
   if (!(abs_cos > 0.0f)) return false;
-  if (!tri.textured) {
-    s.radiance = tri.radiance;
-  } else {
-    HitRecord at = tri.where;
-    at.u = b1;
-    at.v = b2;
-    at.t = s.distance;
-    at.time = time;
-    s.radiance = materials_.emission(geometry_.texture_point(at));
-  }
+  s.radiance = tri.textured ? materials_.emission(tri.texturing.at(b1, b2)) : tri.radiance;
   s.pdf = pmf * dist2 / (sh.area * abs_cos);
   return std::isfinite(s.pdf) && s.pdf > 0.0f;
 }

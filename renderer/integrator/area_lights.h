@@ -47,6 +47,7 @@ class AreaLights {
     Shape shape;  // where it stands; at the shutter's opening when it moves
     vec3 radiance;  // the emission when it is constant over the triangle
     bool textured;  // emission varies: evaluate the material at each point
+    TextureCorners texturing;  // where the material's textures are read, when textured
     bool double_sided;
     bool moves;  // moves or deforms: its shape comes from the geometry at each time
     float side;  // +1 when the front normal is along cross(e1, e2), else -1
