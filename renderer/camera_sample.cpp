@@ -95,23 +95,21 @@ void CameraSampler::sample(int fx, int fy, int s0, int n, PathCounters& counters
     if (hits[l].found) scene_.geometry->prefetch_triangle(hits[l].hit);
   for (int l = 0; l < lanes; ++l)
     if (hits[l].found) scene_.geometry->prefetch_corners(hits[l].hit);
-  // The hits' surfaces made together, then every texture they read prefetched, before the
-  // first path is shaded: the texels' cache misses overlap (DamagedHelmet's five 2048x2048
-  // textures are far larger than the caches).
-  SurfaceHit surfaces[kGroup];
-  for (int l = 0; l < lanes; ++l)
-    if (hits[l].found) surfaces[l] = scene_.geometry->surface(rays[l], hits[l].hit);
-  for (int l = 0; l < lanes; ++l)
-    if (hits[l].found) scene_.materials.prefetch_textures(surfaces[l]);
+  // Then every large texture the hits read (DamagedHelmet: five of 2048x2048), before the
+  // first path is shaded: their cache misses overlap.
+  if (scene_.materials.prefetches_textures())
+    for (int l = 0; l < lanes; ++l)
+      if (hits[l].found) {
+        const HitRecord& h = hits[l].hit;
+        scene_.materials.prefetch_textures(scene_.geometry->texture_corners(h).at(h.u, h.v));
+      }
   for (int k = 0; k < n; ++k) {
     if (lane[k] < 0) continue;
     const Ray& ray = rays[lane[k]];
     CameraSampleResult& r = out[k];
     PathRecord* record = records ? records[k] : nullptr;
     if (hits[lane[k]].found || record) {
-      const ClosestHit& hit = hits[lane[k]];
-      r.radiance = trace_path_from(scene_, params_, ray, &hit, hit.found ? &surfaces[lane[k]] : nullptr, *rng[k], r.first,
-                                   counters, record);
+      r.radiance = trace_path_from(scene_, params_, ray, &hits[lane[k]], *rng[k], r.first, counters, record);
     } else if (traced) {
       r.radiance = camera_ray_escaped(scene_, params_, ray, counters);
     } else {

@@ -29,6 +29,7 @@ struct TextureImage {
   std::vector<vec4, CacheLineAllocator<vec4>> texels_float;  // linear, when the source has more than 8 bits
 
   bool empty() const { return width == 0; }
+  std::size_t stored_bytes() const { return texels8.size() * sizeof(texels8[0]) + texels_float.size() * sizeof(vec4); }
   std::size_t index(int i, int j) const {  // texel (column i, row j from the top; both >= 0)
     const unsigned u = static_cast<unsigned>(i), v = static_cast<unsigned>(j);  // shifts and masks
     const std::size_t block = static_cast<std::size_t>(v / kBlock) * blocks_x + u / kBlock;

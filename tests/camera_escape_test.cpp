@@ -33,7 +33,7 @@ void expect_same_as_path(const RenderScene& rs, const PathTracerParams& params) 
     Sampler rng(SamplerKind::sobol, 3, 4, static_cast<std::uint32_t>(i), 1);
     FirstHit first;
     PathCounters full, fast;
-    const vec3 a = trace_path_from(rs, params, ray, &miss, nullptr, rng, first, full);
+    const vec3 a = trace_path_from(rs, params, ray, &miss, rng, first, full);
     const vec3 b = camera_ray_escaped(rs, params, ray, fast);
     for (int c = 0; c < 3; ++c) EXPECT_TRUE(same_bits(a[c], b[c])) << "ray " << i << " channel " << c << ": " << a[c] << " " << b[c];
     EXPECT_EQ(full.rays, fast.rays);

@@ -53,8 +53,12 @@ MaterialTable::MaterialTable(const SceneDescription& scene) : materials_(scene.m
     constant_.push_back(!textured(m));
     constant_point_.push_back(constant_.back() ? evaluate(m, plain) : ShadingPoint{});
     texture_uses_.emplace_back();
-    for (const TextureSlot& slot : texture_slots(m))
-      if (slot.ref->present()) texture_uses_.back().push_back({&(slot.srgb ? srgb_ : linear_)[slot.ref->image], slot.ref});
+    for (const TextureSlot& slot : texture_slots(m)) {
+      if (!slot.ref->present()) continue;
+      const TextureImage& image = (slot.srgb ? srgb_ : linear_)[slot.ref->image];
+      if (image.stored_bytes() > kPrefetchAbove) texture_uses_.back().push_back({&image, slot.ref});
+    }
+    prefetches_ = prefetches_ || !texture_uses_.back().empty();
   }
 }
 

@@ -45,6 +45,7 @@ class MaterialTable {
   // Starts loading the texels evaluate(hit) will read, every texture's at once: their cache
   // misses then overlap, where each lookup would otherwise wait for the one before it.
   void prefetch_textures(const SurfaceHit& hit) const;
+  bool prefetches_textures() const { return prefetches_; }  // has a texture to prefetch
   // evaluate(hit).emission alone (one texture, not every one): what light sampling needs.
   vec3 emission(const SurfaceHit& hit) const { return emission(material(hit.material), hit); }
   const Material& material(int index) const;
@@ -69,12 +70,16 @@ class MaterialTable {
   // `constant_` false where the material has a texture).
   std::vector<ShadingPoint> constant_point_;
   std::vector<char> constant_;
-  // Each material's textures, in the encoding each is read in (by material index).
+  // Each material's textures larger than kPrefetchAbove bytes, in the encoding each is read
+  // in (by material index): a smaller one stays in the caches, and locating its texels twice
+  // only costs (BoxTextured's 256x256 texture prefetched: 4% fewer samples/s).
+  static constexpr std::size_t kPrefetchAbove = std::size_t{1} << 20;
   struct TextureUse {
     const TextureImage* image;
     const TextureRef* ref;
   };
   std::vector<std::vector<TextureUse>> texture_uses_;
+  bool prefetches_ = false;
   std::vector<TextureImage> srgb_, linear_;  // by image index; empty where unused
 };
 

@@ -165,12 +165,11 @@ vec3 finished_sample(vec3 radiance, const PathTracerParams& params, PathCounters
 
 vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ray,
                 Sampler& rng, FirstHit& first, PathCounters& counters, PathRecord* record) {
-  return trace_path_from(scene, params, ray, nullptr, nullptr, rng, first, counters, record);
+  return trace_path_from(scene, params, ray, nullptr, rng, first, counters, record);
 }
 
 vec3 trace_path_from(const RenderScene& scene, const PathTracerParams& params, Ray ray, const ClosestHit* known,
-                     const SurfaceHit* known_surface, Sampler& rng, FirstHit& first, PathCounters& counters,
-                     PathRecord* record) {
+                     Sampler& rng, FirstHit& first, PathCounters& counters, PathRecord* record) {
   vec3 radiance(0.0f), throughput(1.0f);
   vec3 absorption(0.0f);  // of the volume the ray travels in (Beer-Lambert); 0 = none
   float bsdf_pdf = 0.0f;  // solid-angle pdf of the direction that led here; 0 = camera ray
@@ -202,6 +201,7 @@ vec3 trace_path_from(const RenderScene& scene, const PathTracerParams& params, R
     ray = Ray{origin, ray.direction, 0.0f, std::numeric_limits<float>::infinity(), time};
     return true;
   };
+  bool prefetched = known != nullptr;  // a camera packet's textures are prefetched together
   for (;;) {
     ++counters.rays;
     const bool found = known ? (hit = known->hit, known->found) : scene.geometry->intersect(ray, hit);
@@ -220,9 +220,9 @@ vec3 trace_path_from(const RenderScene& scene, const PathTracerParams& params, R
       if (features_pending && (bounce > 0 || passes > 0)) first.albedo = feature_weight * scene.environment.radiance(ray.direction);
       break;
     }
-    SurfaceHit s = known_surface ? *known_surface : scene.geometry->surface(ray, hit);
-    if (!known_surface) scene.materials.prefetch_textures(s);
-    known_surface = nullptr;  // the first hit's only
+    SurfaceHit s = scene.geometry->surface(ray, hit);
+    if (!prefetched) scene.materials.prefetch_textures(s);
+    prefetched = false;
     ShadingPoint sp = scene.materials.evaluate(s);
     PathVertex* vertex = nullptr;
     if (record) {

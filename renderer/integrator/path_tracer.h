@@ -62,12 +62,9 @@ struct PathRecord {
 vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ray,
                 Sampler& rng, FirstHit& first, PathCounters& counters, PathRecord* record = nullptr);
 // The same path when the ray's closest hit is already known (`known`, as
-// SceneGeometry::intersect gives it: camera rays traced as a packet), and the surface there
-// too when `known_surface` is not null (the packet's surfaces made together, their textures
-// prefetched); null: not known.
+// SceneGeometry::intersect gives it: camera rays traced as a packet); null: not known.
 vec3 trace_path_from(const RenderScene& scene, const PathTracerParams& params, Ray ray, const ClosestHit* known,
-                     const SurfaceHit* known_surface, Sampler& rng, FirstHit& first, PathCounters& counters,
-                     PathRecord* record = nullptr);
+                     Sampler& rng, FirstHit& first, PathCounters& counters, PathRecord* record = nullptr);
 // What trace_path_from returns, bit for bit, for a camera ray known to hit nothing, without
 // the set-up of a path: most camera rays of a small object against the sky end so.
 vec3 camera_ray_escaped(const RenderScene& scene, const PathTracerParams& params, const Ray& ray,
