@@ -21,7 +21,7 @@ struct CacheLineAllocator {
   CacheLineAllocator(const CacheLineAllocator<U>&) {}
 
   T* allocate(std::size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), kAlignment)); }
-  void deallocate(T* p, std::size_t n) { ::operator delete(p, n * sizeof(T), kAlignment); }
+  void deallocate(T* p, std::size_t) { ::operator delete(p, kAlignment); }  // not sized: clang lacks it by default
 
   // resize(n) default-initialises: a trivial type is left as it is, to be written next.
   template <typename U>
