@@ -40,6 +40,11 @@ struct ShadingPoint {
 class MaterialTable {
  public:
   explicit MaterialTable(const SceneDescription& scene);
+  // Not copied: texture_uses_ points into srgb_ and linear_ (a move keeps their buffers).
+  MaterialTable(const MaterialTable&) = delete;
+  MaterialTable& operator=(const MaterialTable&) = delete;
+  MaterialTable(MaterialTable&&) = default;
+  MaterialTable& operator=(MaterialTable&&) = default;
 
   ShadingPoint evaluate(const SurfaceHit& hit) const;
   // Starts loading the texels evaluate(hit) will read, every texture's at once: their cache
