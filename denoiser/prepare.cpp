@@ -89,10 +89,12 @@ void remove_outliers(Halves& halves) {
     halves.h[k].outlier = detect_outliers(halves.h[k].color, halves.h[1 - k].color, halves.h[k].valid, ref[k]);
   for (int k = 0; k < 2; ++k) {
     Half& h = halves.h[k];
+    h.excess.assign(h.valid.size(), 0.0f);
     for (std::size_t i = 0; i < h.valid.size(); ++i) {
       if (!h.outlier[i]) continue;
       const float l = (std::max(h.color.at(0, i), 0.0f) + std::max(h.color.at(1, i), 0.0f) + std::max(h.color.at(2, i), 0.0f)) / 3.0f;
       const float scale = ref[k][i] / l;  // l > ref >= 0
+      h.excess[i] = l / ref[k][i];  // inf for a reference of 0
       for (int c = 0; c < 3; ++c) h.color.at(c, i) *= scale;
       h.valid[i] = 0.0f;
     }

@@ -12,6 +12,7 @@ struct Half {
   Planes color;  // 3 channels; where this half is missing, the other half (or 0)
   std::vector<float> valid;  // 1 where this half has finite values, at least one sample and no outlier
   std::vector<std::uint8_t> outlier;  // 1 where this half's colour was a firefly (denoiser/outliers.h)
+  std::vector<float> excess;  // where an outlier: its luminance over its reference (> 1); 0 elsewhere
   std::vector<float> count;  // its number of samples (1 each when the input gives none)
   Planes variance;  // 3: the variance of this half's mean, estimated from both halves, smoothed
   // 3: the same, one pixel's own estimate (1 degree of freedom, unbiased, 0 where a half is

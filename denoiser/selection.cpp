@@ -7,6 +7,8 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "denoiser/outliers.h"
+
 namespace tessera::denoiser {
 
 namespace {
@@ -54,7 +56,7 @@ struct Candidates {
   std::vector<const Planes*> colour;  // candidate 0 the unfiltered colour, then the filters'
 };
 
-Candidates candidates(const Halves& halves, const std::vector<Filtered>& passes, const Unfiltered& noisy) {
+Candidates candidates(const Halves& halves, const std::vector<Filtered>& passes, const Planes& unfiltered) {
   Candidates out;
   for (int h = 0; h < 2; ++h) out.half[h].push_back(nullptr);
   for (const Filtered& f : passes)
@@ -62,7 +64,7 @@ Candidates candidates(const Halves& halves, const std::vector<Filtered>& passes,
       out.filtered.push_back(combined(halves, f.filtered[0][band], f.filtered[1][band]));
       for (int h = 0; h < 2; ++h) out.half[h].push_back(&f.filtered[h][band]);
     }
-  out.colour.push_back(&noisy.rgb);
+  out.colour.push_back(&unfiltered);
   // Pointers into `filtered`, now complete (moving a Candidates keeps its elements in place).
   for (const Planes& p : out.filtered) out.colour.push_back(&p);
   return out;
@@ -93,6 +95,19 @@ Planes pixel_errors(const Halves& halves, const Candidates& cand, float half_var
   return err;
 }
 
+// The unfiltered candidate: the colour as given, but where one half is an implausible firefly
+// (denoiser/outliers.h, kImplausibleExcess) and the other half holds data, that other half.
+Planes unfiltered_candidate(const Halves& halves, const Unfiltered& noisy) {
+  Planes out = noisy.rgb;
+  for (std::size_t i = 0; i < out.pixels(); ++i)
+    for (int h = 0; h < 2; ++h) {
+      const Half &self = halves.h[h], &other = halves.h[1 - h];
+      if (!(self.excess[i] >= kImplausibleExcess) || other.valid[i] == 0.0f) continue;
+      for (int k = 0; k < 3; ++k) out.at(k, i) = other.color.at(k, i);
+    }
+  return out;
+}
+
 // Whether the noisy colour is a candidate at pixel i: where it exists and its box holds an
 // estimate; and where a half was taken out as a firefly (or is missing), only if that
 // estimate is the least: a legitimate glint keeps its value where the neighbourhood says the
@@ -112,7 +127,8 @@ Selection select_and_combine(const Halves& halves, const std::vector<Filtered>& 
                              int radius, int blend_radius, float half_variance_bias) {
   const Half& a = halves.h[0];
   const Half& b = halves.h[1];
-  const Candidates cand = candidates(halves, passes, noisy);
+  const Planes noisy_candidate = unfiltered_candidate(halves, noisy);
+  const Candidates cand = candidates(halves, passes, noisy_candidate);
   const int count = static_cast<int>(cand.colour.size());
   if (count > kMaxCandidates) throw std::invalid_argument("denoise: at most 2 regression passes");
   const std::size_t n = a.valid.size();

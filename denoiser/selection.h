@@ -2,7 +2,8 @@
 // The error of filtered half A is estimated against the independent noisy half B,
 // E[(F_A - B)^2] = MSE(F_A) + Var(B), so MSE(F_A) ~ (F_A - B)^2 - Var(B); symmetrically for
 // F_B. Candidate 0 is the noisy colour as given (not demodulated, and at a pixel the outlier
-// test flagged, with its firefly: see offered() in selection.cpp), whose error is the
+// test flagged, with its firefly: see offered() in selection.cpp; but an implausible firefly,
+// denoiser/outliers.h, gives way to the other half alone), whose error is the
 // variance of the halves' mean, wa^2 Var(A) + wb^2 Var(B): half a single half's for equal
 // halves (it was compared as a single half's, which undervalued it 2x). A filtered half's
 // error is kept as it is, an upper bound of the combined filter's (the halves share its bias).

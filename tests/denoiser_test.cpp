@@ -710,27 +710,37 @@ TEST(DenoiserSelection, TheUnfilteredColourIsChosenWhereEveryFilterIsWorse) {
 
 TEST(DenoiserSelection, AFireflyFlaggedPixelKeepsItsNoisyColourWhereTheFiltersAreWorse) {
   // The unfiltered candidate is the colour as given, also where the outlier test took one
-  // half out: a legitimate glint the filters cannot explain keeps its value. Flat 0.5 with
-  // sigma 0.05 as above, the filters off by 0.2 everywhere, and one pixel's even half at 40
-  // (80x its 5x5 neighbourhood's 75th percentile, unconfirmed by the odd half: an outlier).
-  // Its box's estimates say the unfiltered colour is 32x better, so it keeps (40 + odd) / 2
-  // within the filters' weight, 2e-3 x (20 - 0.7) = 0.04; it used to be reconstructed (0.7).
+  // half out: a glint the filters cannot explain keeps its value; but not a firefly
+  // kImplausibleExcess times its reference, for which the other half stands. Flat 0.5 with
+  // sigma 0.05 as above, the filters off by 0.2 everywhere, and two pixels' even halves bright
+  // (unconfirmed by the odd half: outliers): one at 10, about 9.4x its reference (twice its
+  // 5x5 neighbourhood's 75th percentile, ~0.53), one at 40, about 38x. Their boxes' estimates
+  // say the unfiltered colour is 32x better, so the first keeps (10 + odd) / 2 and the second
+  // the odd half, each within the filters' weight, 2e-3 x (5.25 - 0.7) < 0.01 and
+  // 2e-3 x 0.2 < 1e-3; without the exception the second kept 20.
   Scene s;
   s.sigma = 0.05f;
   DenoiseInput in = make_input(s);
-  const std::size_t i = 32 * static_cast<std::size_t>(s.width) + 32;
-  for (int k = 0; k < 3; ++k) in.color_even[3 * i + k] = 40.0f;
+  const std::size_t glint = 16 * static_cast<std::size_t>(s.width) + 16, firefly = 48 * static_cast<std::size_t>(s.width) + 48;
+  for (int k = 0; k < 3; ++k) in.color_even[3 * glint + k] = 10.0f, in.color_even[3 * firefly + k] = 40.0f;
   const DenoiseParams p;
   const denoiser::Halves halves = denoiser::prepare_halves(in, p);
-  ASSERT_EQ(halves.h[0].outlier[i], 1);
+  ASSERT_EQ(halves.h[0].outlier[glint], 1);
+  ASSERT_EQ(halves.h[0].outlier[firefly], 1);
+  ASSERT_LT(halves.h[0].excess[glint], denoiser::kImplausibleExcess);
+  ASSERT_GT(halves.h[0].excess[firefly], denoiser::kImplausibleExcess);
   denoiser::Filtered f;
   for (int h = 0; h < 2; ++h)
     for (int c = 0; c < 2; ++c) f.filtered[h][c] = denoiser::Planes(s.width, s.height, 3, 0.7f);
   const denoiser::Selection sel = denoiser::select_and_combine(halves, {f}, denoiser::unfiltered_colour(in),
                                                                p.selection_radius, p.selection_blend_radius,
                                                                p.half_variance_bias);
-  EXPECT_EQ(sel.chosen[i], denoiser::kUnfiltered);
-  for (int k = 0; k < 3; ++k) EXPECT_NEAR(sel.rgb.at(k, i), 0.5f * (40.0f + in.color_odd[3 * i + k]), 0.04f);
+  EXPECT_EQ(sel.chosen[glint], denoiser::kUnfiltered);
+  EXPECT_EQ(sel.chosen[firefly], denoiser::kUnfiltered);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(sel.rgb.at(k, glint), 0.5f * (10.0f + in.color_odd[3 * glint + k]), 0.01f);
+    EXPECT_NEAR(sel.rgb.at(k, firefly), in.color_odd[3 * firefly + k], 1e-3f);
+  }
 }
 
 TEST(Denoiser, SameBitsForAnyThreadCount) {
