@@ -19,8 +19,9 @@
 // is data for no window. This is a bias: the energy of a removed firefly is not in the denoised
 // colour (the caller's noisy beauty keeps it) unless the selection keeps the noisy colour there
 // (denoiser/selection.cpp, offered()); a firefly 25x its reference is not kept even then (the
-// other half stands for the noisy colour: kImplausibleExcess in denoiser/outliers.h). Each window's fit is bounded by the range of the colours
-// it was fitted to, so no window extrapolates.
+// other half stands for the noisy colour: kImplausibleExcess in denoiser/outliers.h). Each
+// window's fit is bounded by the range of the colours it was fitted to, so no window
+// extrapolates.
 //
 // A plain image-processing library: Eigen, TBB and the standard library only.
 #pragma once
