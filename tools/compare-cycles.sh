@@ -9,7 +9,9 @@
 #     falls as 1/samples, so this product does not depend on the spp: lower is better), and
 #     Cycles' over tessera's: > 1 means tessera reaches a given noise sooner; and the same
 #     ratio for the noise normalised by the image's squared mean value, which does not reward
-#     the darker image for being darker.
+#     the darker image for being darker, and for the relative noise (each pixel's over its own
+#     squared value + 0.01, as relMSE weighs errors), which does not reward a renderer for
+#     showing a region darker (Cycles' rough metals lose light that tessera keeps).
 # Also writes, per scene, NAME-tessera-vs-cycles.png (seed 1: tessera left, Cycles right) into
 # OUT_DIR. Each run's times go to stderr.
 #   tools/compare-cycles.sh [--spp N] [--width W] [--height H] [--rounds R] [--out DIR] [--envmap FILE] SCENE... [-- TESSERA_OPTION...]
@@ -48,8 +50,8 @@ world=(--background 1,1,1)
 [[ -n "$envmap" ]] && world=(--envmap "$envmap")
 samples=$((width * height * spp))
 echo "load before: $(uptime)" >&2
-echo "| scene | tessera s | Cycles s | tessera M samples/s | Cycles M samples/s | noise tessera | noise Cycles | s x noise tessera | s x noise Cycles | time to equal noise, Cycles / tessera | same, normalised noise |"
-echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+echo "| scene | tessera s | Cycles s | tessera M samples/s | Cycles M samples/s | noise tessera | noise Cycles | s x noise tessera | s x noise Cycles | time to equal noise, Cycles / tessera | same, normalised noise | same, relative noise |"
+echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
 for scene in "${scenes[@]}"; do
   name=$(basename "${scene%.*}")
   t_times=() c_times=()
@@ -69,13 +71,15 @@ for scene in "${scenes[@]}"; do
   nc=$(metrics noise "$out/$name-cycles-s1.exr" "$out/$name-cycles-s2.exr")
   rt=$(metrics noise --normalized "$out/$name-tessera-s1.exr" "$out/$name-tessera-s2.exr")
   rc=$(metrics noise --normalized "$out/$name-cycles-s1.exr" "$out/$name-cycles-s2.exr")
+  pt=$(metrics noise --relative "$out/$name-tessera-s1.exr" "$out/$name-tessera-s2.exr")
+  pc=$(metrics noise --relative "$out/$name-cycles-s1.exr" "$out/$name-cycles-s2.exr")
   # Cycles' render_time is given to 0.01 s: a render that short cannot be timed (n/a).
-  awk -v n="$name" -v t="$t" -v c="$c" -v s="$samples" -v nt="$nt" -v nc="$nc" -v rt="$rt" -v rc="$rc" '
+  awk -v n="$name" -v t="$t" -v c="$c" -v s="$samples" -v nt="$nt" -v nc="$nc" -v rt="$rt" -v rc="$rc" -v pt="$pt" -v pc="$pc" '
     function per(x, y, f) { return x > 0 && y > 0 ? sprintf(f, x / y) : "n/a" }
     BEGIN {
-      printf "| %s | %.3f | %.2f | %s | %s | %.3e | %.3e | %.3e | %.3e | %s | %s |\n", n, t, c,
+      printf "| %s | %.3f | %.2f | %s | %s | %.3e | %.3e | %.3e | %.3e | %s | %s | %s |\n", n, t, c,
         per(s / 1e6, t, "%.3f"), per(s / 1e6, c, "%.3f"), nt, nc, t * nt, c * nc,
-        per(c * nc, t * nt, "%.2fx"), per(c * rc, t * rt, "%.2fx") }'
+        per(c * nc, t * nt, "%.2fx"), per(c * rc, t * rt, "%.2fx"), per(c * pc, t * pt, "%.2fx") }'
   echo "$name: tessera ${t_times[*]} s; Cycles ${c_times[*]} s" >&2
   to_png "$out/$name-tessera-vs-cycles.png" "$out/$name-tessera-s1.exr" "$out/$name-cycles-s1.exr"
 done
