@@ -99,12 +99,13 @@ Planes pixel_errors(const Halves& halves, const Candidates& cand, float half_var
 // (denoiser/outliers.h, kImplausibleExcess) and the other half holds data, that other half.
 Planes unfiltered_candidate(const Halves& halves, const Unfiltered& noisy) {
   Planes out = noisy.rgb;
-  for (std::size_t i = 0; i < out.pixels(); ++i)
+  each_pixel(out.pixels(), [&](std::size_t i) {
     for (int h = 0; h < 2; ++h) {
       const Half &self = halves.h[h], &other = halves.h[1 - h];
       if (!(self.excess[i] >= kImplausibleExcess) || other.valid[i] == 0.0f) continue;
       for (int k = 0; k < 3; ++k) out.at(k, i) = other.color.at(k, i);
     }
+  });
   return out;
 }
 

@@ -95,8 +95,8 @@ def pair(a_path, b_path, a_channels, b_channels):
 def noise(a, b, mask=None, normalized=False, relative=False):
     if mask is not None:
         a, b = a[mask], b[mask]
-    if relative:
-        return float(((a - b) ** 2 / 2 / (((a + b) / 2) ** 2 + EPS)).mean())
+    if relative:  # (a - b)^2 / 2 = 2 (a - mean)^2, weighed as relMSE weighs an error against its reference
+        return float((2 * rel_sq_error(a, (a + b) / 2)).mean())
     v = float(((a - b) ** 2 / 2).mean())
     return v / float((a + b).mean() / 2) ** 2 if normalized else v
 
