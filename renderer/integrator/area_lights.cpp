@@ -57,7 +57,14 @@ AreaLights::AreaLights(const SceneDescription& scene, const SceneGeometry& geome
       const vec3 constant = m.emissive_factor * m.emissive_strength;
       const bool textured = m.emissive_texture.present();
       const TextureCorners texturing = textured ? geometry.texture_corners(where) : TextureCorners{};
-      Triangle tri{where, {p0, p1 - p0, p2 - p0, centre.ng, area}, constant, textured, texturing, m.double_sided, pp.moves, 1.0f};
+      Triangle tri;
+      tri.shape = {p0, p1 - p0, p2 - p0, centre.ng, area};
+      tri.textured = textured;
+      tri.double_sided = m.double_sided;
+      tri.moves = pp.moves;
+      tri.texturing = texturing;
+      tri.radiance = constant;
+      tri.where = where;
       double mean_area = area;
       if (pp.moves) {  // its front side as at the opening; chosen by its mean area over the steps
         tri.side = glm::dot(centre.ng, glm::cross(p1 - p0, p2 - p0)) < 0.0f ? -1.0f : 1.0f;
@@ -80,6 +87,7 @@ AreaLights::AreaLights(const SceneDescription& scene, const SceneGeometry& geome
     power[i] *= textured_luminance(materials, *m, triangles_[i].texturing);
   });
   by_power_ = Distribution1D(std::move(power));
+  for (std::size_t i = 0; i < triangles_.size(); ++i) triangles_[i].pmf = by_power_.pmf(i);
   if (by_power_.empty()) {
     triangles_.clear();
     first_.clear();
@@ -98,12 +106,20 @@ AreaLights::Shape AreaLights::shape_at(const HitRecord& where, float side) const
   return sh;
 }
 
-bool AreaLights::sample(const vec3& p, float time, float u_select, const vec2& u_point, AreaLightSample& s) const {
-  if (triangles_.empty()) return false;
+AreaLights::Choice AreaLights::choose(float u_select) const {
+  if (triangles_.empty()) return {};
   const std::size_t i = by_power_.sample(u_select);
-  const float pmf = by_power_.pmf(i);
+  const Triangle* tri = &triangles_[i];
+  __builtin_prefetch(tri);
+  __builtin_prefetch(reinterpret_cast<const char*>(tri) + 64);
+  return {static_cast<std::uint32_t>(i), true};
+}
+
+bool AreaLights::sample(const vec3& p, float time, const Choice& light, const vec2& u_point, AreaLightSample& s) const {
+  if (!light.some) return false;
+  const Triangle& tri = triangles_[light.index];
+  const float pmf = tri.pmf;
   if (pmf <= 0.0f) return false;
-  const Triangle& tri = triangles_[i];
   const Shape sh = tri.moves ? shape_at(at_time(tri.where, time), tri.side) : tri.shape;
   if (!(sh.area > 0.0f)) return false;  // a moving one where it collapses
   // Uniform point on the triangle (square-root parameterisation).
@@ -128,12 +144,12 @@ float AreaLights::pdf(const HitRecord& hit, const SurfaceHit& surface, const vec
   const auto it = first_.find(list_key(hit.geom, hit.instance));
   if (it == first_.end()) return 0.0f;
   const std::uint32_t i = it->second + hit.prim;
-  if (i >= triangles_.size() || by_power_.pmf(i) <= 0.0f) return 0.0f;
-  const float abs_cos = std::fabs(glm::dot(surface.ng, direction));
-  if (!(abs_cos > 0.0f)) return 0.0f;
+  if (i >= triangles_.size()) return 0.0f;
   const Triangle& tri = triangles_[i];
+  const float abs_cos = std::fabs(glm::dot(surface.ng, direction));
+  if (tri.pmf <= 0.0f || !(abs_cos > 0.0f)) return 0.0f;
   const float area = tri.moves ? shape_at(at_time(tri.where, hit.time), tri.side).area : tri.shape.area;
-  return by_power_.pmf(i) * surface.t * surface.t / (area * abs_cos);
+  return tri.pmf * surface.t * surface.t / (area * abs_cos);
 }
 
 }  // namespace tessera

@@ -3,6 +3,7 @@
 // the shutter is open is sampled where it is at the path's time, with its area then.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <unordered_map>
 #include <vector>
@@ -28,8 +29,18 @@ class AreaLights {
   bool empty() const { return triangles_.empty(); }
   std::size_t size() const { return triangles_.size(); }
 
-  // Samples a light point as seen from `p` at `time`; false when the sample carries nothing.
-  bool sample(const vec3& p, float time, float u_select, const vec2& u_point, AreaLightSample& s) const;
+  // The light u_select chooses (by power), its record prefetched; none when there is no light.
+  // A path chooses before it sets up the shading point's BSDF, so that the record (one of
+  // thousands: a cache miss) arrives meanwhile.
+  struct Choice {
+    std::uint32_t index = 0;
+    bool some = false;
+  };
+  Choice choose(float u_select) const;
+
+  // Samples a point on the chosen light as seen from `p` at `time`; false when the sample
+  // carries nothing.
+  bool sample(const vec3& p, float time, const Choice& light, const vec2& u_point, AreaLightSample& s) const;
 
   // Solid-angle pdf with which sample() would have produced the hit `hit` (a point on an
   // emissive triangle at hit.time, surface.t away from the shading point along `direction`).
@@ -42,16 +53,21 @@ class AreaLights {
     vec3 normal;  // unit, front side (as SurfaceHit::ng)
     float area;
   };
-  struct Triangle {
-    HitRecord where;  // geom, prim and instance, to evaluate the surface at a point
+  // Laid out so that a light sample reads two cache lines: the first holds the shape and the
+  // flags, the second the emission (texture corners or constant radiance); `where`, after them,
+  // is read only for a moving triangle.
+  struct alignas(64) Triangle {
     Shape shape;  // where it stands; at the shutter's opening when it moves
-    vec3 radiance;  // the emission when it is constant over the triangle
-    bool textured;  // emission varies: evaluate the material at each point
-    TextureCorners texturing;  // where the material's textures are read, when textured
-    bool double_sided;
-    bool moves;  // moves or deforms: its shape comes from the geometry at each time
-    float side;  // +1 when the front normal is along cross(e1, e2), else -1
+    float side = 1.0f;  // +1 when the front normal is along cross(e1, e2), else -1
+    bool textured = false;  // emission varies: evaluate the material at each point
+    bool double_sided = false;
+    bool moves = false;  // moves or deforms: its shape comes from the geometry at each time
+    float pmf = 0.0f;  // the probability of choosing it
+    alignas(64) TextureCorners texturing;  // where the material's textures are read, when textured
+    vec3 radiance{0.0f};  // the emission when it is constant over the triangle
+    HitRecord where;  // geom, prim and instance, to evaluate the surface at a point
   };
+  static_assert(offsetof(Triangle, texturing) == 64 && offsetof(Triangle, where) == 128, "two lines per sample");
   // The shape of triangle `where` at where.time (area 0 where it collapses), front by `side`.
   Shape shape_at(const HitRecord& where, float side) const;
   // (top-level id, geometry within it) of a triangle list: instance id and geometry for an

@@ -99,12 +99,12 @@ vec3 punctual_light_contribution(const RenderScene& scene, const ShadingContext&
 }
 
 // One light sample on the emissive triangles, weighted against BSDF sampling (MIS).
-vec3 area_light_contribution(const RenderScene& scene, const ShadingContext& c, Sampler& rng,
+// `u`: the point (x, y) and the light (z, which chose `light`), stratified together.
+vec3 area_light_contribution(const RenderScene& scene, const ShadingContext& c, const vec3& u, const AreaLights::Choice& light,
                              LightSampling mode, PathCounters& counters) {
-  const vec3 u = rng.next3();  // the point (x, y) and the light (z), stratified together
   AreaLightSample ls;
   vec3 wi_local;
-  if (!scene.area_lights->sample(c.s.p, c.time, u.z, {u.x, u.y}, ls) || !c.usable(ls.wi, wi_local)) return vec3(0.0f);
+  if (!scene.area_lights->sample(c.s.p, c.time, light, {u.x, u.y}, ls) || !c.usable(ls.wi, wi_local)) return vec3(0.0f);
   float bsdf_pdf;
   const vec3 f = c.bsdf.eval(c.wo_local, wi_local, bsdf_pdf);
   if (f == vec3(0.0f) || ls.radiance == vec3(0.0f)) return vec3(0.0f);
@@ -264,6 +264,14 @@ vec3 trace_path_from(const RenderScene& scene, const PathTracerParams& params, R
       }
       sp.ior = dispersive_ior(sp.ior, sp.dispersion, wavelength);
     }
+    // The emitter light sampling will use, chosen before the BSDF is set up (its record is
+    // fetched meanwhile); no number is drawn in between, so the sequence is as it was.
+    vec3 u_light(0.0f);
+    AreaLights::Choice light;
+    if (light_sampling && !last) {
+      u_light = rng.next3();
+      light = scene.area_lights->choose(u_light.z);
+    }
     const Frame frame = Frame::from_normal(s.ns);
     const vec3 wo_local = frame.to_local(-ray.direction);
     const GltfBsdf bsdf(sp, wo_local, front ? sp.ior : 1.0f / sp.ior, frame);
@@ -282,7 +290,7 @@ vec3 trace_path_from(const RenderScene& scene, const PathTracerParams& params, R
       direct += added;
     };
     if (!scene.description.lights.empty()) add_direct(punctual_light_contribution(scene, ctx, counters));
-    if (light_sampling) add_direct(area_light_contribution(scene, ctx, rng, mode, counters));
+    if (light_sampling) add_direct(area_light_contribution(scene, ctx, u_light, light, mode, counters));
     if (environment_sampling) add_direct(environment_contribution(scene, ctx, rng, mode, counters));
     if (vertex) vertex->direct = direct;
 
