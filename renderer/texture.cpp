@@ -154,7 +154,32 @@ struct TexelQuad {
   float dx, dy;
 };
 
-TexelQuad locate(const TextureImage& image, const TextureRef& ref, vec2 uv) {
+// The same bits (unlike ==, which takes -0 for +0 and no NaN for itself).
+inline bool same_bits(float a, float b) {
+  std::uint32_t x, y;
+  std::memcpy(&x, &a, 4);
+  std::memcpy(&y, &b, 4);
+  return x == y;
+}
+
+// Everything locate() reads.
+struct LocateInputs {
+  int width = -1, height = -1;  // matches no image
+  WrapMode wrap_s{}, wrap_t{};
+  FilterMode filter{};
+  TextureTransform transform;
+  vec2 uv{0.0f};
+
+  bool same(const TextureImage& image, const TextureRef& ref, vec2 at) const {
+    return width == image.width && height == image.height && wrap_s == ref.wrap_s && wrap_t == ref.wrap_t &&
+           filter == ref.filter && same_bits(uv.x, at.x) && same_bits(uv.y, at.y) &&
+           same_bits(transform.offset.x, ref.transform.offset.x) && same_bits(transform.offset.y, ref.transform.offset.y) &&
+           same_bits(transform.rotation, ref.transform.rotation) && same_bits(transform.scale.x, ref.transform.scale.x) &&
+           same_bits(transform.scale.y, ref.transform.scale.y);
+  }
+};
+
+TexelQuad locate_anew(const TextureImage& image, const TextureRef& ref, vec2 uv) {
   uv = transform_uv(ref.transform, uv);
   if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) uv = vec2(0.0f);
   // Keep coordinates in int range before flooring; wrapping makes far values equivalent
@@ -179,6 +204,20 @@ TexelQuad locate(const TextureImage& image, const TextureRef& ref, vec2 uv) {
   q.at[2] = image.index(i0, j1);
   q.at[3] = image.index(i1, j1);
   return q;
+}
+
+// A material's maps usually share their size, sampler and coordinates, and a hit reads each
+// twice (prefetch_texture, then sample_texture): the last place found is remembered per thread.
+TexelQuad locate(const TextureImage& image, const TextureRef& ref, vec2 uv) {
+  struct Last {
+    LocateInputs in;
+    TexelQuad quad{};
+  };
+  thread_local Last last;
+  if (last.in.same(image, ref, uv)) return last.quad;
+  const TexelQuad q = locate_anew(image, ref, uv);
+  last = {{image.width, image.height, ref.wrap_s, ref.wrap_t, ref.filter, ref.transform, uv}, q};
+  return q;  // not read back from `last`: a load of what was just stored in parts stalls
 }
 
 }  // namespace

@@ -91,6 +91,39 @@ TEST(Texture, LookupsEqualTheSamplerRulesOnRowMajorPixels) {
   }
 }
 
+// Lookups one after another at the same point, of textures that differ in one thing each
+// (size, a wrap mode, the filter, the transform): each follows its own rules, though a
+// thread remembers where the last lookup read (texture.cpp, locate()).
+TEST(Texture, ConsecutiveLookupsThatDifferInOneSettingEachFollowTheirOwn) {
+  const Image wide = ramp_image(5, 3, 8), tall = ramp_image(3, 5, 8);
+  const TextureImage wide_tex = make_texture_image(wide, ColorEncoding::Linear);
+  const TextureImage tall_tex = make_texture_image(tall, ColorEncoding::Linear);
+  TextureRef plain;
+  plain.image = 0;
+  TextureRef clamp_s = plain, mirror_t = plain, nearest = plain, shifted = plain;
+  clamp_s.wrap_s = WrapMode::ClampToEdge;
+  mirror_t.wrap_t = WrapMode::MirroredRepeat;
+  nearest.filter = FilterMode::Nearest;
+  shifted.transform.offset = vec2(0.3f, 0.0f);  // rotation 0, scale 1: uv + offset exactly
+  for (const vec2 uv : {vec2(-0.37f, 1.71f), vec2(0.52f, 0.48f), vec2(2.9f, -1.2f)}) {
+    for (int round = 0; round < 2; ++round) {
+      const struct {
+        const TextureImage& tex;
+        const Image& img;
+        const TextureRef& ref;
+        vec2 at;
+      } lookups[] = {{wide_tex, wide, plain, uv},     {wide_tex, wide, clamp_s, uv},  {wide_tex, wide, mirror_t, uv},
+                     {wide_tex, wide, nearest, uv},   {tall_tex, tall, plain, uv},    {wide_tex, wide, shifted, uv},
+                     {wide_tex, wide, plain, uv + vec2(0.3f, 0.0f)}};
+      for (const auto& l : lookups) {
+        const vec2 reference_at = &l.ref == &shifted ? l.at + shifted.transform.offset : l.at;
+        const vec4 got = sample_texture(l.tex, l.ref, l.at), want = lookup_reference(l.img, l.ref, reference_at, ColorEncoding::Linear);
+        for (int c = 0; c < 4; ++c) ASSERT_NEAR(got[c], want[c], 2e-6f) << "uv " << uv.x << "," << uv.y << " lookup " << (&l - lookups);
+      }
+    }
+  }
+}
+
 // Each texel centre returns exactly that texel: nothing is blended across the 4x4 blocks'
 // borders or lost at the padding of a size that is not a multiple of 4.
 TEST(Texture, TexelCentresReturnTheirTexelAcrossBlockBorders) {
