@@ -135,9 +135,15 @@ bool AreaLights::sample(const vec3& p, float time, const Choice& light, const ve
   if (!(cos_light > 0.0f || tri.double_sided)) return false;  // the back of a one-sided emitter
   const float abs_cos = std::fabs(cos_light);
   if (!(abs_cos > 0.0f)) return false;
-  s.radiance = tri.textured ? materials_.emission(tri.texturing.at(b1, b2)) : tri.radiance;
+  s.at = vec2(b1, b2);
+  if (tri.textured) materials_.prefetch_emission(tri.texturing.at(b1, b2));
   s.pdf = pmf * dist2 / (sh.area * abs_cos);
   return std::isfinite(s.pdf) && s.pdf > 0.0f;
+}
+
+vec3 AreaLights::radiance(const Choice& light, const AreaLightSample& s) const {
+  const Triangle& tri = triangles_[light.index];
+  return tri.textured ? materials_.emission(tri.texturing.at(s.at.x, s.at.y)) : tri.radiance;
 }
 
 float AreaLights::pdf(const HitRecord& hit, const SurfaceHit& surface, const vec3& direction) const {

@@ -18,7 +18,7 @@ struct AreaLightSample {
   vec3 p{0.0f};  // point on the light
   vec3 wi{0.0f};  // unit direction from the shading point to p
   float distance = 0.0f;
-  vec3 radiance{0.0f};  // emitted towards the shading point
+  vec2 at{0.0f};  // the point's weights of the triangle's second and third corner
   float pdf = 0.0f;  // solid angle, at the shading point
 };
 
@@ -39,8 +39,10 @@ class AreaLights {
   Choice choose(float u_select) const;
 
   // Samples a point on the chosen light as seen from `p` at `time`; false when the sample
-  // carries nothing.
+  // carries nothing. A textured emission's texels are prefetched: radiance() reads them, after
+  // the caller has evaluated its BSDF meanwhile.
   bool sample(const vec3& p, float time, const Choice& light, const vec2& u_point, AreaLightSample& s) const;
+  vec3 radiance(const Choice& light, const AreaLightSample& s) const;  // emitted towards the shading point
 
   // Solid-angle pdf with which sample() would have produced the hit `hit` (a point on an
   // emissive triangle at hit.time, surface.t away from the shading point along `direction`).

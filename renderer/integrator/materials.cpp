@@ -151,6 +151,11 @@ void MaterialTable::prefetch_textures(const SurfaceHit& hit) const {
   for (const TextureUse& use : texture_uses_[hit.material]) prefetch_texture(*use.image, *use.ref, hit.uv[use.ref->texcoord]);
 }
 
+void MaterialTable::prefetch_emission(const SurfaceHit& hit) const {
+  const TextureRef& ref = material(hit.material).emissive_texture;
+  if (ref.present()) prefetch_texture(srgb_[ref.image], ref, hit.uv[ref.texcoord]);
+}
+
 void MaterialTable::set_base_color(const Material& m, const SurfaceHit& hit, ShadingPoint& sp) const {
   const vec4 base = m.base_color_factor * lookup(m.base_color_texture, srgb_, hit) * hit.color;
   sp.base_color = glm::clamp(vec3(base), 0.0f, 1.0f);

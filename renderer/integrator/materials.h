@@ -53,6 +53,7 @@ class MaterialTable {
   bool prefetches_textures() const { return prefetches_; }  // has a texture to prefetch
   // evaluate(hit).emission alone (one texture, not every one): what light sampling needs.
   vec3 emission(const SurfaceHit& hit) const { return emission(material(hit.material), hit); }
+  void prefetch_emission(const SurfaceHit& hit) const;  // the texels emission(hit) will read
   const Material& material(int index) const;
 
   // Opacity for the alpha test: 0 or 1 for MASK (alphaCutoff), the alpha itself for BLEND,

@@ -107,12 +107,14 @@ vec3 area_light_contribution(const RenderScene& scene, const ShadingContext& c, 
   if (!scene.area_lights->sample(c.s.p, c.time, light, {u.x, u.y}, ls) || !c.usable(ls.wi, wi_local)) return vec3(0.0f);
   float bsdf_pdf;
   const vec3 f = c.bsdf.eval(c.wo_local, wi_local, bsdf_pdf);
-  if (f == vec3(0.0f) || ls.radiance == vec3(0.0f)) return vec3(0.0f);
+  if (f == vec3(0.0f)) return vec3(0.0f);
+  const vec3 radiance = scene.area_lights->radiance(light, ls);  // its texels fetched during eval
+  if (radiance == vec3(0.0f)) return vec3(0.0f);
   ++counters.rays;
   const vec3 through = visibility(scene, c.origin_towards(ls.wi), ls.wi, ls.distance * (1.0f - 1e-4f), c.time);
   if (through == vec3(0.0f)) return vec3(0.0f);
   const float weight = strategy_weight(mode, true, ls.pdf, bsdf_pdf);
-  return through * f * ls.radiance * (std::fabs(wi_local.z) * weight / ls.pdf);
+  return through * f * radiance * (std::fabs(wi_local.z) * weight / ls.pdf);
 }
 
 // One direction towards the environment image, weighted against BSDF sampling (MIS).
