@@ -179,7 +179,7 @@ struct LocateInputs {
   }
 };
 
-TexelQuad locate_anew(const TextureImage& image, const TextureRef& ref, vec2 uv) {
+void locate_anew(const TextureImage& image, const TextureRef& ref, vec2 uv, TexelQuad& q) {
   uv = transform_uv(ref.transform, uv);
   if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) uv = vec2(0.0f);
   // Keep coordinates in int range before flooring; wrapping makes far values equivalent
@@ -188,7 +188,6 @@ TexelQuad locate_anew(const TextureImage& image, const TextureRef& ref, vec2 uv)
   const float x = in_range(uv.x * image.width - 0.5f), y = in_range(uv.y * image.height - 0.5f);
   // floor(), exact below 2^24 (the generic x86-64 build has no instruction for it).
   const int i = static_cast<int>(x) - (x < static_cast<int>(x)), j = static_cast<int>(y) - (y < static_cast<int>(y));
-  TexelQuad q;
   q.dx = x - static_cast<float>(i);
   q.dy = y - static_cast<float>(j);
   // Inside the image every wrap mode is the identity: only texels past an edge are wrapped.
@@ -196,34 +195,36 @@ TexelQuad locate_anew(const TextureImage& image, const TextureRef& ref, vec2 uv)
   auto row = [&](int r) { return r >= 0 && r < image.height ? r : wrap(r, image.height, ref.wrap_t); };
   if (ref.filter == FilterMode::Nearest) {
     q.at[0] = q.at[1] = q.at[2] = q.at[3] = image.index(column(i + (q.dx >= 0.5f)), row(j + (q.dy >= 0.5f)));
-    return q;
+    return;
   }
   const int i0 = column(i), i1 = column(i + 1), j0 = row(j), j1 = row(j + 1);
   q.at[0] = image.index(i0, j0);
   q.at[1] = image.index(i1, j0);
   q.at[2] = image.index(i0, j1);
   q.at[3] = image.index(i1, j1);
-  return q;
 }
 
 // A material's maps usually share their size, sampler and coordinates, and a hit reads each
 // twice (prefetch_texture, then sample_texture): the last place found is remembered per thread.
-TexelQuad locate(const TextureImage& image, const TextureRef& ref, vec2 uv) {
+// The result lives in the thread's record until its next locate(); callers read its fields
+// one by one, as they were stored (a copy, read in wider loads than those stores, stalled).
+const TexelQuad& locate(const TextureImage& image, const TextureRef& ref, vec2 uv) {
   struct Last {
     LocateInputs in;
     TexelQuad quad{};
   };
   thread_local Last last;
-  if (last.in.same(image, ref, uv)) return last.quad;
-  const TexelQuad q = locate_anew(image, ref, uv);
-  last = {{image.width, image.height, ref.wrap_s, ref.wrap_t, ref.filter, ref.transform, uv}, q};
-  return q;  // not read back from `last`: a load of what was just stored in parts stalls
+  if (!last.in.same(image, ref, uv)) {
+    last.in = {image.width, image.height, ref.wrap_s, ref.wrap_t, ref.filter, ref.transform, uv};
+    locate_anew(image, ref, uv, last.quad);
+  }
+  return last.quad;
 }
 
 }  // namespace
 
 vec4 sample_texture(const TextureImage& image, const TextureRef& ref, vec2 uv) {
-  const TexelQuad q = locate(image, ref, uv);
+  const TexelQuad& q = locate(image, ref, uv);
   if (ref.filter == FilterMode::Nearest) return decode_texel(image, q.at[0]);
   const float dx = q.dx, dy = q.dy;
   return (1 - dx) * (1 - dy) * decode_texel(image, q.at[0]) + dx * (1 - dy) * decode_texel(image, q.at[1]) +
@@ -231,7 +232,7 @@ vec4 sample_texture(const TextureImage& image, const TextureRef& ref, vec2 uv) {
 }
 
 void prefetch_texture(const TextureImage& image, const TextureRef& ref, vec2 uv) {
-  const TexelQuad q = locate(image, ref, uv);
+  const TexelQuad& q = locate(image, ref, uv);
   for (std::size_t at : q.at) {
     if (image.texels8.empty()) __builtin_prefetch(&image.texels_float[at]);
     else __builtin_prefetch(&image.texels8[at]);
