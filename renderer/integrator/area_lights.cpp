@@ -112,11 +112,11 @@ AreaLights::Choice AreaLights::choose(float u_select) const {
   const Triangle* tri = &triangles_[i];
   __builtin_prefetch(tri);
   __builtin_prefetch(reinterpret_cast<const char*>(tri) + 64);
-  return {static_cast<std::uint32_t>(i), true};
+  return {i};
 }
 
 bool AreaLights::sample(const vec3& p, float time, const Choice& light, const vec2& u_point, AreaLightSample& s) const {
-  if (!light.some) return false;
+  if (light.index >= triangles_.size()) return false;
   const Triangle& tri = triangles_[light.index];
   const float pmf = tri.pmf;
   if (pmf <= 0.0f) return false;

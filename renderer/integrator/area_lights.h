@@ -29,12 +29,11 @@ class AreaLights {
   bool empty() const { return triangles_.empty(); }
   std::size_t size() const { return triangles_.size(); }
 
-  // The light u_select chooses (by power), its record prefetched; none when there is no light.
-  // A path chooses before it sets up the shading point's BSDF, so that the record (one of
-  // thousands: a cache miss) arrives meanwhile.
+  // The light u_select chooses (by power), its record prefetched; with no light, an index
+  // past the end. A path chooses before it sets up the shading point's BSDF, so that the
+  // record (one of thousands: a cache miss) arrives meanwhile.
   struct Choice {
-    std::uint32_t index = 0;
-    bool some = false;
+    std::size_t index = 0;
   };
   Choice choose(float u_select) const;
 
