@@ -49,24 +49,32 @@ GltfBsdf::GltfBsdf(const ShadingPoint& sp, const vec3& wo, float eta, const Fram
   const vec3 fo = reflectance_o_;
   const float dielectric = 1.0f - metallic_;
   const float tint = fmax_inline(luminance(base_), 1e-3f);
-  float w[kLobeCount];
-  const float diffuse = dielectric * (1.0f - transmission_) * (1.0f - mean3(fo));
-  w[kDiffuse] = diffuse * (1.0f - diffuse_transmission_) * luminance(base_);
-  w[kDiffuseTransmission] = diffuse * diffuse_transmission_ * luminance(diffuse_transmission_color_);
-  w[kSpecular] = metallic_ * max3(metal_fresnel(wo.z) * metal_scale_) * e_o_ + dielectric * mean3(fo);
-  w[kMultiScatter] = metallic_ * (1.0f - e_o_) * max3(multiscatter_color_) * kPi * (1.0f - base_albedo_.albedo_average);
-  w[kTransmission] = dielectric * transmission_ * fmax_inline(1.0f - mean3(fo), 0.05f) * tint;
   sheen_scaling_o_ = sheen_scaling(wo);
   const float under_sheen = sheen_scaling_o_;
   if (!refracts_ && transmission_ > 0.0f)
     straight_ = coat_scale_ * under_sheen * dielectric * transmission_ * (vec3(1.0f) - fo) * base_;
-  for (int i = 0; i < kSheen; ++i) w[i] *= under_sheen;
-  w[kSheen] = sheen_max_ > 0.0f ? sheen_max_ * sheen_albedo(wo.z, sheen_.alpha) : 0.0f;
-  for (int i = 0; i < kClearcoat; ++i) w[i] *= coat_scale_;
-  w[kClearcoat] = 1.0f - coat_scale_;  // the coat's compensated reflectance
-  float total = 0.0f;
-  for (float x : w) total += x;
-  for (int i = 0; i < kLobeCount; ++i) weight_[i] = total > 0.0f ? w[i] / total : 0.0f;
+  // Named values, not an array: stored in parts and read back whole, an array stalled on its
+  // stores. Each lobe under the sheen and the coat is scaled by what passes them.
+  auto layered = [&](float w) { return w * under_sheen * coat_scale_; };
+  const float diffuse = dielectric * (1.0f - transmission_) * (1.0f - mean3(fo));
+  const float w_diffuse = layered(diffuse * (1.0f - diffuse_transmission_) * luminance(base_));
+  const float w_diffuse_transmission = layered(diffuse * diffuse_transmission_ * luminance(diffuse_transmission_color_));
+  const float w_specular = layered(metallic_ * max3(metal_fresnel(wo.z) * metal_scale_) * e_o_ + dielectric * mean3(fo));
+  const float w_multiscatter =
+      layered(metallic_ * (1.0f - e_o_) * max3(multiscatter_color_) * kPi * (1.0f - base_albedo_.albedo_average));
+  const float w_transmission = layered(dielectric * transmission_ * fmax_inline(1.0f - mean3(fo), 0.05f) * tint);
+  const float w_sheen = (sheen_max_ > 0.0f ? sheen_max_ * sheen_albedo(wo.z, sheen_.alpha) : 0.0f) * coat_scale_;
+  const float w_clearcoat = 1.0f - coat_scale_;  // the coat's compensated reflectance
+  const float total = w_diffuse + w_diffuse_transmission + w_specular + w_multiscatter + w_transmission +
+                      w_sheen + w_clearcoat;
+  auto share = [total](float w) { return total > 0.0f ? w / total : 0.0f; };
+  weight_[kDiffuse] = share(w_diffuse);
+  weight_[kDiffuseTransmission] = share(w_diffuse_transmission);
+  weight_[kSpecular] = share(w_specular);
+  weight_[kMultiScatter] = share(w_multiscatter);
+  weight_[kTransmission] = share(w_transmission);
+  weight_[kSheen] = share(w_sheen);
+  weight_[kClearcoat] = share(w_clearcoat);
   lambda_o_ = ggx_.lambda(wo);
   g1_o_ = 1.0f / (1.0f + lambda_o_);
 }
@@ -104,7 +112,7 @@ void GltfBsdf::orient_lobes(const ShadingPoint& sp, const Frame& frame, const ve
 // The albedo tables' factors for this material and wo (see the header).
 void GltfBsdf::compensate(const vec3& wo) {
   const float mu = wo.z;
-  base_albedo_ = AlbedoSlice(roughness_);
+  base_albedo_.set_roughness(roughness_);
   if (iridescence_ > 0.0f) {
     if (metallic_ < 1.0f) film_f0_ = schlick_refit(thin_film_reflectance(film_, mu, f0_), mu);
     if (metallic_ > 0.0f) metal_film_f0_ = schlick_refit(thin_film_reflectance(film_, mu, base_), mu);
@@ -146,7 +154,7 @@ void GltfBsdf::compensate(const vec3& wo) {
   }
   if (clearcoat_ > 0.0f) {
     const float mu_coat = coat_tilted_ ? coat_frame_.to_local(wo).z : mu;
-    coat_albedo_ = AlbedoSlice(coat_roughness_);
+    coat_albedo_.set_roughness(coat_roughness_);
     coat_interface_scale_ = 1.0f / fmax_inline(coat_albedo_.albedo(mu_coat), 1e-3f);
     const float reflectance = 0.04f + 0.96f * coat_albedo_.schlick_share(mu_coat);
     coat_scale_ = 1.0f - clearcoat_ * reflectance;

@@ -105,7 +105,7 @@ float multiscatter_pdf_mu(float roughness, float mu) {
   return (cdf[at.i + 1] - cdf[at.i]) * (kAlbedoMu - 1);
 }
 
-AlbedoSlice::AlbedoSlice(float roughness) {
+void AlbedoSlice::set_roughness(float roughness) {
   const GridPos r = locate(roughness, kAlbedoRoughness);
   e0_ = kE + r.i * kAlbedoMu;
   e1_ = e0_ + kAlbedoMu;

@@ -32,8 +32,10 @@ float ggx_schlick_share_average(float roughness);  // avg(E5 / E)
 // roughness interpolation, and read E5 / E from its own table (no division per lookup).
 class AlbedoSlice {
  public:
-  AlbedoSlice() = default;  // empty: assign a slice before reading it
-  explicit AlbedoSlice(float roughness);
+  // Empty: set a roughness before reading it. Set in place, as a copy of a new slice was read
+  // back in other widths than it was just written in, a store-forwarding stall per hit.
+  AlbedoSlice() = default;
+  void set_roughness(float roughness);
   float albedo(float mu) const { return at(e0_, e1_, mu); }  // E
   float schlick_share(float mu) const { return at(s0_, s1_, mu); }  // E5 / E
   float albedo_average = 1.0f, share_average = 0.0f;  // avg(E), avg(E5 / E)
