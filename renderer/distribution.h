@@ -68,7 +68,16 @@ class Distribution1D {
       hi = k + 1 < guide_.size() ? std::min<std::size_t>(guide_[k + 1] + 1, cdf_.size()) : cdf_.size();
       if ((lo > 0 && !(cdf_[lo - 1] <= u)) || (hi < cdf_.size() && !(cdf_[hi - 1] > u))) lo = 0, hi = cdf_.size();
     }
-    return std::upper_bound(cdf_.begin() + lo, cdf_.begin() + hi, u) - cdf_.begin();
+    return upper_bound(lo, hi, u);
+  }
+
+  // std::upper_bound's index in cdf_[lo, hi) without a branch per step to mispredict: the
+  // range halves by a conditional move.
+  std::size_t upper_bound(std::size_t lo, std::size_t hi, float u) const {
+    if (lo == hi) return lo;
+    const float* base = cdf_.data() + lo;
+    for (std::size_t n = hi - lo; n > 1; n -= n / 2) base += u < base[n / 2] ? 0 : n / 2;
+    return static_cast<std::size_t>(base - cdf_.data()) + (u < *base ? 0 : 1);
   }
 
   std::vector<float> pmf_, cdf_;
