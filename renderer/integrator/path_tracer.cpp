@@ -225,6 +225,21 @@ vec3 trace_path_from(const RenderScene& scene, const PathTracerParams& params, R
     SurfaceHit s = scene.geometry->surface(ray, hit);
     if (!prefetched) scene.materials.prefetch_textures(s);
     prefetched = false;
+    // The emitter light sampling will use: its three numbers come next in the sequence unless
+    // this vertex draws a wavelength first, so then it is chosen here, and its record arrives
+    // while the material is evaluated; otherwise after the wavelength. A path that ends before
+    // light sampling leaves the numbers unused, and draws nothing after them.
+    const bool last = bounce >= params.max_bounces;
+    vec3 u_light(0.0f);
+    AreaLights::Choice light;
+    bool light_chosen = false;
+    auto choose_light = [&] {
+      u_light = rng.next3();
+      light = scene.area_lights->choose(u_light.z);
+      light_chosen = true;
+    };
+    if (light_sampling && !last && !(wavelength == 0.0f && scene.materials.material(s.material).dispersion > 0.0f))
+      choose_light();
     ShadingPoint sp = scene.materials.evaluate(s);
     PathVertex* vertex = nullptr;
     if (record) {
@@ -252,7 +267,6 @@ vec3 trace_path_from(const RenderScene& scene, const PathTracerParams& params, R
     if (vertex) vertex->normal = s.ns;
     record_features(sp, s);
     features_pending = features_pending && features_look_through(sp);
-    const bool last = bounce >= params.max_bounces;
     if (last && !(sp.thin_walled && sp.transmission > 0.0f)) {
       if (record) record->end = "max bounces";
       break;
@@ -266,14 +280,7 @@ vec3 trace_path_from(const RenderScene& scene, const PathTracerParams& params, R
       }
       sp.ior = dispersive_ior(sp.ior, sp.dispersion, wavelength);
     }
-    // The emitter light sampling will use, chosen before the BSDF is set up (its record is
-    // fetched meanwhile); no number is drawn in between, so the sequence is as it was.
-    vec3 u_light(0.0f);
-    AreaLights::Choice light;
-    if (light_sampling && !last) {
-      u_light = rng.next3();
-      light = scene.area_lights->choose(u_light.z);
-    }
+    if (light_sampling && !last && !light_chosen) choose_light();
     const Frame frame = Frame::from_normal(s.ns);
     const vec3 wo_local = frame.to_local(-ray.direction);
     const GltfBsdf bsdf(sp, wo_local, front ? sp.ior : 1.0f / sp.ior, frame);
