@@ -514,7 +514,7 @@ bool SceneGeometry::intersect(const Ray& ray, HitRecord& hit, vec3* geometric_no
 }
 
 void SceneGeometry::intersect_packet(const Ray* rays, int n, ClosestHit* hits, vec3* normals) const {
-  if (n < kMinPacket) {  // the same hits, without a mostly idle packet's cost
+  if (n < kMinPacket || !packets_) {  // the same hits, without a mostly idle packet's cost
     for (int i = 0; i < n; ++i) hits[i].found = intersect(rays[i], hits[i].hit, normals ? &normals[i] : nullptr);
     return;
   }

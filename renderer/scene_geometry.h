@@ -94,8 +94,6 @@ class SceneGeometry {
   // With `geometric_normal`, also Embree's unnormalised geometric normal (in the hit
   // instance's own space: what a traversal-only pass needs, not shading).
   bool intersect(const Ray& ray, HitRecord& hit, vec3* geometric_normal = nullptr) const;
-  // The closest hits of n <= N rays traced together as one Embree packet (rtcIntersectN,
-  // coherent): found[i] and hits[i] (and normals[i] when given) as intersect() gives them.
   // The closest hits of n <= kPacketSize rays traced together (rtcIntersect16, marked coherent:
   // meant for the camera rays of one pixel). Each is what intersect() gives that ray, bit for
   // bit: Embree's packet kernels compute the same t, u, v and normal, and a hit within
@@ -104,9 +102,13 @@ class SceneGeometry {
   // same way for the same packet (docs/performance.md, "Camera rays as packets").
   // Fewer than kMinPacket rays are traced one by one: a packet of 16 with 4 lanes busy took
   // 1.3-1.5 times as long as 4 single rays, with 8 busy 0.7-1.1 times (docs/performance.md).
+  // So are all of them until use_packets(true): where Embree's packets agree with its single
+  // rays on this CPU (renderer/packet_check.h; RenderScene asks).
   static constexpr int kPacketSize = 16, kMinPacket = 8;
   static constexpr float kEdgeBand = 1e-5f;
   void intersect_packet(const Ray* rays, int n, ClosestHit* hits, vec3* normals = nullptr) const;
+  void use_packets(bool on) { packets_ = on; }
+  bool uses_packets() const { return packets_; }
   // What reaches origin from origin + tmax direction at `time`: 0 behind an opaque surface,
   // else the product of what the surfaces between let through (1 - alpha of a BLEND
   // surface, the straight-through transmittance of a thin transmissive one, from `thin`).
@@ -196,6 +198,7 @@ class SceneGeometry {
 
   const SceneDescription& scene_;
   RTCDevice device_;
+  bool packets_ = false;  // intersect_packet traces packets (else each ray alone)
   const MaterialTable* materials_;
   std::vector<std::unique_ptr<FilterView>> filter_views_;
   RTCScene top_ = nullptr;

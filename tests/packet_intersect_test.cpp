@@ -6,10 +6,12 @@
 
 #include <algorithm>
 #include <cstring>
+#include <limits>
 #include <random>
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "renderer/packet_check.h"
 #include "renderer/render_scene.h"
 #include "tests/scene_builders.h"
 
@@ -111,6 +113,48 @@ TEST(PacketIntersect, EveryHitIsTheSingleRaysWhateverSharesThePacket) {
   EXPECT_GT(instanced, 250);
   EXPECT_GT(moving, 70);
   EXPECT_GT(hits, 1500);
+}
+
+// Packets are traced only on a CPU where Embree's packet kernels agree with its single-ray
+// kernel (renderer/packet_check.h): whenever packets forced on for this richer scene (a
+// blended surface, instances, a moving one) give some ray another hit, the check must have
+// said no, and RenderScene follows the check.
+TEST(PacketIntersect, PacketsAreUsedOnlyWhereTheCheckFoundThemAgreeing) {
+  int blend_material = -1;
+  RenderScene rs(packet_scene(blend_material), {});
+  const bool agree = packets_match_single_rays(rs.device.get(), rs.geometry->moves());
+  EXPECT_EQ(rs.geometry->uses_packets(), agree);
+  rs.geometry->use_packets(true);
+  const SceneGeometry& g = *rs.geometry;
+  constexpr int N = SceneGeometry::kPacketSize;
+  std::mt19937 gen(23);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  const vec3 eye(0.1f, 0.05f, 5.0f);
+  int differ = 0, hits = 0;
+  for (int p = 0; p < 24 * 24; ++p) {
+    const int px = p % 24, py = p / 24;
+    Ray rays[N];
+    for (Ray& r : rays) {
+      const vec3 target((px + unit(gen)) / 24.0f * 4.4f - 2.2f, 2.2f - (py + unit(gen)) / 24.0f * 4.4f, 0.0f);
+      r = Ray{eye, glm::normalize(target - eye), 0.0f, std::numeric_limits<float>::infinity(), unit(gen)};
+    }
+    ClosestHit found[N];
+    vec3 ng[N];
+    g.intersect_packet(rays, N, found, ng);
+    for (int k = 0; k < N; ++k) {
+      HitRecord single;
+      vec3 n;
+      const bool f = g.intersect(rays[k], single, &n);
+      hits += f;
+      const HitRecord& h = found[k].hit;
+      differ += found[k].found != f ||
+                (f && !(same_bits(h.t, single.t) && same_bits(h.u, single.u) && same_bits(h.v, single.v) &&
+                        h.prim == single.prim && h.geom == single.geom && h.instance == single.instance &&
+                        same_bits(ng[k].x, n.x) && same_bits(ng[k].y, n.y) && same_bits(ng[k].z, n.z)));
+    }
+  }
+  EXPECT_GT(hits, 1500);
+  EXPECT_TRUE(differ == 0 || !agree) << differ << " of " << hits << " hits differ in packets, yet the check found them agreeing";
 }
 
 // Rays aimed at the diagonals of a quad (the edge its two triangles share, where both are hit
