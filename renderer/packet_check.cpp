@@ -6,7 +6,6 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "renderer/sampler.h"
-#include "renderer/scene_geometry.h"
 
 namespace tessera {
 namespace {
@@ -57,15 +56,6 @@ SceneDescription check_scene(bool motion) {
 
 bool same_bits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
-bool same_hit(const ClosestHit& a, const vec3& na, bool found, const HitRecord& b, const vec3& nb) {
-  if (a.found != found) return false;
-  if (!found) return true;
-  const HitRecord& h = a.hit;
-  return same_bits(h.t, b.t) && same_bits(h.u, b.u) && same_bits(h.v, b.v) && h.geom == b.geom &&
-         h.prim == b.prim && h.instance == b.instance && same_bits(na.x, nb.x) && same_bits(na.y, nb.y) &&
-         same_bits(na.z, nb.z);
-}
-
 // Whether every packet of the check scene's camera rays finds the single rays' hits.
 bool agree(RTCDevice device, bool motion) {
   const SceneDescription scene = check_scene(motion);
@@ -84,20 +74,33 @@ bool agree(RTCDevice device, bool motion) {
         r = Ray{eye, glm::normalize(target - eye)};
         r.time = u.z;
       }
-      ClosestHit hits[N];
-      vec3 normals[N];
-      g.intersect_packet(rays, N, hits, normals);
-      for (int i = 0; i < N; ++i) {
-        HitRecord single;
-        vec3 n;
-        const bool found = g.intersect(rays[i], single, &n);
-        if (!same_hit(hits[i], normals[i], found, single, n)) return false;
-      }
+      if (packet_differences(g, rays, N) > 0) return false;
     }
   return true;
 }
 
 }  // namespace
+
+int packet_differences(const SceneGeometry& g, const Ray* rays, int n, int* hits) {
+  ClosestHit packet[SceneGeometry::kPacketSize];
+  vec3 normals[SceneGeometry::kPacketSize];
+  g.intersect_packet(rays, n, packet, normals);
+  int differ = 0;
+  for (int i = 0; i < n; ++i) {
+    HitRecord single;
+    vec3 ng;
+    const bool found = g.intersect(rays[i], single, &ng);
+    if (hits) *hits += found;
+    const HitRecord& h = packet[i].hit;
+    const bool same = packet[i].found == found &&
+                      (!found || (same_bits(h.t, single.t) && same_bits(h.u, single.u) && same_bits(h.v, single.v) &&
+                                  h.geom == single.geom && h.prim == single.prim && h.instance == single.instance &&
+                                  same_bits(normals[i].x, ng.x) && same_bits(normals[i].y, ng.y) &&
+                                  same_bits(normals[i].z, ng.z)));
+    differ += !same;
+  }
+  return differ;
+}
 
 bool packets_match_single_rays(RTCDevice device, bool scene_moves) {
   static const bool native = rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED) != 0;

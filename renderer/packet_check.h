@@ -12,6 +12,8 @@
 
 #include <embree3/rtcore.h>
 
+#include "renderer/scene_geometry.h"
+
 namespace tessera {
 
 // False without Embree's native 16-wide kernels; else whether every camera-ray packet of a
@@ -19,5 +21,10 @@ namespace tessera {
 // and instanced, still; for a scene where something moves, also instanced moving and
 // deforming. Decided once per process, with the first device asked (about 10 ms).
 bool packets_match_single_rays(RTCDevice device, bool scene_moves);
+
+// How many of the n <= kPacketSize rays get another hit from g.intersect_packet than from
+// g.intersect (found, t, u, v, triangle, instance or normal, bit for bit); `hits` counts the
+// rays intersect() finds a hit for.
+int packet_differences(const SceneGeometry& g, const Ray* rays, int n, int* hits = nullptr);
 
 }  // namespace tessera

@@ -138,20 +138,7 @@ TEST(PacketIntersect, PacketsAreUsedOnlyWhereTheCheckFoundThemAgreeing) {
       const vec3 target((px + unit(gen)) / 24.0f * 4.4f - 2.2f, 2.2f - (py + unit(gen)) / 24.0f * 4.4f, 0.0f);
       r = Ray{eye, glm::normalize(target - eye), 0.0f, std::numeric_limits<float>::infinity(), unit(gen)};
     }
-    ClosestHit found[N];
-    vec3 ng[N];
-    g.intersect_packet(rays, N, found, ng);
-    for (int k = 0; k < N; ++k) {
-      HitRecord single;
-      vec3 n;
-      const bool f = g.intersect(rays[k], single, &n);
-      hits += f;
-      const HitRecord& h = found[k].hit;
-      differ += found[k].found != f ||
-                (f && !(same_bits(h.t, single.t) && same_bits(h.u, single.u) && same_bits(h.v, single.v) &&
-                        h.prim == single.prim && h.geom == single.geom && h.instance == single.instance &&
-                        same_bits(ng[k].x, n.x) && same_bits(ng[k].y, n.y) && same_bits(ng[k].z, n.z)));
-    }
+    differ += packet_differences(g, rays, N, &hits);
   }
   EXPECT_GT(hits, 1500);
   EXPECT_TRUE(differ == 0 || !agree) << differ << " of " << hits << " hits differ in packets, yet the check found them agreeing";
