@@ -24,6 +24,13 @@ inline float fmin_inline(float a, float b) { return a < b || b != b ? a : b; }
 
 inline float luminance(const vec3& c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
 inline float max_component(const vec3& c) { return fmax_inline(c.r, fmax_inline(c.g, c.b)); }
+// The same bits (unlike ==, which takes -0 for +0 and no NaN for itself).
+inline bool same_bits(float a, float b) {
+  std::uint32_t x, y;
+  std::memcpy(&x, &a, 4);
+  std::memcpy(&y, &b, 4);
+  return x == y;
+}
 inline bool is_finite(const vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }

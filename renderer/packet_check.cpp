@@ -1,7 +1,6 @@
 #include "renderer/packet_check.h"
 
 #include <cmath>
-#include <cstring>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -53,8 +52,6 @@ SceneDescription check_scene(bool motion) {
   }
   return d;
 }
-
-bool same_bits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 // Whether every packet of the check scene's camera rays finds the single rays' hits.
 bool agree(RTCDevice device, bool motion) {

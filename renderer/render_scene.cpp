@@ -87,8 +87,8 @@ RenderScene::RenderScene(SceneDescription scene, const EnvironmentParams& env)
     : description(std::move(scene)), environment(env), materials(description) {
   const auto start = std::chrono::steady_clock::now();
   geometry = std::make_unique<SceneGeometry>(description, device.get(), &materials);
-  geometry->use_packets(packets_match_single_rays(device.get(), geometry->moves()));
   bvh_build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  geometry->use_packets(packets_match_single_rays(device.get(), geometry->moves()));
   area_lights = std::make_unique<AreaLights>(description, *geometry, materials);
   light_motion = light_motions(description);
 }

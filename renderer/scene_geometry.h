@@ -96,8 +96,9 @@ class SceneGeometry {
   bool intersect(const Ray& ray, HitRecord& hit, vec3* geometric_normal = nullptr) const;
   // The closest hits of n <= kPacketSize rays traced together (rtcIntersect16, marked coherent:
   // meant for the camera rays of one pixel). Each is what intersect() gives that ray, bit for
-  // bit: Embree's packet kernels compute the same t, u, v and normal, and a hit within
-  // kEdgeBand (barycentric) of an edge, where a neighbour ties, is traced again alone. Only
+  // bit: where packets are used, Embree's packet kernels compute the same t, u, v and normal
+  // (renderer/packet_check.h makes sure), and a hit within kEdgeBand (barycentric) of an
+  // edge, where a neighbour ties, is traced again alone. Only
   // a tie between overlapping triangles away from their edges may still go either way, the
   // same way for the same packet (docs/performance.md, "Camera rays as packets").
   // Fewer than kMinPacket rays are traced one by one: a packet of 16 with 4 lanes busy took

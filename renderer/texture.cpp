@@ -154,14 +154,6 @@ struct TexelQuad {
   float dx, dy;
 };
 
-// The same bits (unlike ==, which takes -0 for +0 and no NaN for itself).
-inline bool same_bits(float a, float b) {
-  std::uint32_t x, y;
-  std::memcpy(&x, &a, 4);
-  std::memcpy(&y, &b, 4);
-  return x == y;
-}
-
 // Everything locate() reads.
 struct LocateInputs {
   int width = -1, height = -1;  // matches no image

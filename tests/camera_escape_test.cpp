@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <random>
 
@@ -14,8 +13,6 @@
 
 namespace tessera {
 namespace {
-
-bool same_bits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 RenderScene scene_with(const EnvironmentParams& env) {
   SceneDescription d;

@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cstring>
 #include <limits>
 #include <random>
 
@@ -37,8 +36,6 @@ SceneDescription packet_scene(int& blend_material) {
   d.instances.back().motion = {glm::translate(glm::mat4(1.0f), vec3(1.2f, -0.6f, 0.8f))};
   return d;
 }
-
-bool same_bits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 // The packet's answer for one ray against intersect()'s, field by field.
 void expect_same(const SceneGeometry& g, const Ray& ray, const ClosestHit& packet, const vec3& packet_ng) {
