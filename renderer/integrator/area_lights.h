@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <unordered_map>
 #include <vector>
 
@@ -29,11 +30,11 @@ class AreaLights {
   bool empty() const { return triangles_.empty(); }
   std::size_t size() const { return triangles_.size(); }
 
-  // The light u_select chooses (by power), its record prefetched; with no light, an index
-  // past the end. A path chooses before it sets up the shading point's BSDF, so that the
-  // record (one of thousands: a cache miss) arrives meanwhile.
+  // The light u_select chooses (by power), its record prefetched; with no light (and before
+  // a choice), an index past the end. A path chooses as soon as it knows its hit, so that the
+  // record (one of thousands: a cache miss) arrives while the material is evaluated.
   struct Choice {
-    std::size_t index = 0;
+    std::size_t index = std::numeric_limits<std::size_t>::max();
   };
   Choice choose(float u_select) const;
 
