@@ -252,7 +252,7 @@ PixelNoise pixel_noise() {
 // pixel must mostly go on. A lower threshold than the other tests' makes many such pixels.
 TEST(AdaptiveRender, FlatPixelsStopAtTheMinimumNoisyOnesGoOn) {
   RenderSettings low = adaptive_settings();
-  low.adaptive.threshold = 0.001f;
+  low.adaptive.threshold = 0.0005f;
   low.sampler = SamplerKind::independent;  // the bounds below are for independent samples
   const RenderResult r = render_frame(scene(), camera(), low);
   RenderSettings ref = low;

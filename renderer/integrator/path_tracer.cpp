@@ -173,6 +173,9 @@ vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ra
 vec3 trace_path_from(const RenderScene& scene, const PathTracerParams& params, Ray ray, const ClosestHit* known,
                      Sampler& rng, FirstHit& first, PathCounters& counters, PathRecord* record) {
   vec3 radiance(0.0f), throughput(1.0f);
+  // The refractions' radiance scaling (1 / eta^2 entering glass) undone, for Russian roulette
+  // alone (pbrt-v4's etaScale): a path inside glass has lost no energy, only scale.
+  float eta_scale = 1.0f;
   vec3 absorption(0.0f);  // of the volume the ray travels in (Beer-Lambert); 0 = none
   float bsdf_pdf = 0.0f;  // solid-angle pdf of the direction that led here; 0 = camera ray
   // Straight passes through thin surfaces since the last scattering: they do not count as
@@ -283,7 +286,8 @@ vec3 trace_path_from(const RenderScene& scene, const PathTracerParams& params, R
     if (light_sampling && !last && !light_chosen) choose_light();
     const Frame frame = Frame::from_normal(s.ns);
     const vec3 wo_local = frame.to_local(-ray.direction);
-    const GltfBsdf bsdf(sp, wo_local, front ? sp.ior : 1.0f / sp.ior, frame);
+    const float eta = front ? sp.ior : 1.0f / sp.ior;
+    const GltfBsdf bsdf(sp, wo_local, eta, frame);
     const ShadingContext ctx{s, frame, bsdf, wo_local, time};
     if (last) {  // no scattering left, but the straight pass is none: it goes on, weighted
       throughput *= bsdf.straight_transmittance();
@@ -324,8 +328,12 @@ vec3 trace_path_from(const RenderScene& scene, const PathTracerParams& params, R
     bsdf_pdf = bs.pdf;
     passed = 0.0f;
     if (bs.transmitted && !sp.thin_walled) absorption = front ? sp.absorption : vec3(0.0f);
+    if (bs.transmitted && bs.lobe == GltfBsdf::kTransmission) eta_scale *= sqr(eta);
     if (++bounce >= params.roulette_start) {
-      const float survive = fmin_inline(1.0f, max_component(throughput));
+      // The square root (as Cycles takes) ends paths later than the throughput itself would:
+      // on a bright background the light a path still gathers is not small when its
+      // throughput is (docs/performance.md, "Russian roulette").
+      const float survive = fmin_inline(1.0f, std::sqrt(max_component(throughput) * eta_scale));
       if (rng.next() >= survive) {
         if (record) record->end = "Russian roulette";
         break;

@@ -18,7 +18,7 @@ enum class LightSampling : std::uint8_t { Mis, BsdfOnly, LightsOnly };
 
 struct PathTracerParams {
   int max_bounces = 8;  // scattering events; 0 shows emitters and the environment only
-  int roulette_start = 3;  // bounces before Russian roulette may end a path
+  int roulette_start = 5;  // bounces before Russian roulette may end a path
   LightSampling light_sampling = LightSampling::Mis;
   float clamp = 0.0f;  // > 0: clamp each sample's radiance to this luminance (biased; off by default)
   // A camera ray that hits nothing adds no background (it still lights what rays reach):
