@@ -244,8 +244,9 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
       ->group("Threads and profiling");
   cmd->add_option("--rank-timeout", o.rank_timeout,
                   "Under mpirun: end the job (exit 1, naming the rank) when a rank has given no sign of life, or rank 0 "
-                  "has not answered a request, for this many seconds while another waits for it (a stopped or hung "
-                  "node); it must exceed the longest "
+                  "has not answered a request, for this many seconds while another waits for it, or an MPI call has "
+                  "not returned for that long (a stopped or hung node; ranks other than 0 wait 5 s more for rank 0); "
+                  "it must exceed the longest "
                   "a rank works without contacting rank 0: a batch of tiles, a static block, a wave of a whole "
                   "frame (0: wait forever)")
       ->check(CLI::Range(0.0, 1e9))

@@ -1,5 +1,7 @@
 #include "renderer/mpi_ranks.h"
 
+#include "renderer/call_watch.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -43,6 +45,26 @@ constexpr double kSpinSeconds = 0.01;
 constexpr auto kNap = std::chrono::microseconds(200);
 constexpr double kWatchEvery = 0.05;  // seconds between a waiting rank's looks at the notes
 
+// Ranks other than 0 wait this much longer than --rank-timeout before they give up on rank 0
+// (between calls or inside one): when rank 0 ends the job (MPI_Abort, or exiting), mpirun
+// resumes and ends the others (SIGCONT, SIGTERM, SIGKILL a second later:
+// odls_base_sigkill_timeout); a rank that had waited as long as rank 0 would then give a
+// second verdict on a job already ending. So a job ends with one message.
+constexpr double kOthersLater = 5.0;
+
+// The call watch's verdict: one message, then the process ends with exit code 1 (the app's
+// kExitFailure, as MPI_Abort(1) gives); mpirun then ends the other ranks. MPI itself cannot
+// be called here (another thread, and the main one is inside MPI).
+void stuck_in_mpi(int rank, double seconds) {
+  const std::string who = rank == 0 ? "" : "rank " + std::to_string(rank) + ": ";
+  std::fprintf(stderr,
+               "tessera: %serror: an MPI call has not returned for %.3g s (a rank holding a lock in rank 0's window "
+               "is stopped, hung or cut off): ending the job\n",
+               who.c_str(), seconds);
+  std::fflush(stderr);
+  std::_Exit(1);
+}
+
 std::string rank_list(const std::vector<int>& ranks) {
   std::string s = ranks.size() == 1 ? "rank " : "ranks ";
   for (std::size_t i = 0; i < ranks.size(); ++i) s += (i ? ", " : "") + std::to_string(ranks[i]);
@@ -52,7 +74,11 @@ std::string rank_list(const std::vector<int>& ranks) {
 class MpiRankGroup : public RankGroup {
  public:
   MpiRankGroup(int rank, int size, double timeout)
-      : rank_(rank), size_(size), timeout_(timeout), notes_(2 * static_cast<std::size_t>(size)) {
+      : rank_(rank),
+        size_(size),
+        timeout_(timeout > 0.0 ? timeout + (rank == 0 ? 0.0 : kOthersLater) : 0.0),
+        notes_(2 * static_cast<std::size_t>(size)),
+        watch_(timeout_, [rank](double seconds) { stuck_in_mpi(rank, seconds); }) {
     const MPI_Aint slots = rank == 0 ? arrived_slot(size) : 0;
     // Open MPI's one-sided components differ by network; say which to use rather than die.
     MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
@@ -105,7 +131,7 @@ class MpiRankGroup : public RankGroup {
     int mine = flag ? 1 : 0, result = 0;
     enter();
     MPI_Request request;
-    MPI_Iallreduce(&mine, &result, 1, MPI_INT, MPI_LOR, MPI_COMM_WORLD, &request);
+    watched([&] { MPI_Iallreduce(&mine, &result, 1, MPI_INT, MPI_LOR, MPI_COMM_WORLD, &request); });
     wait(request);
     return result != 0;
   }
@@ -115,7 +141,7 @@ class MpiRankGroup : public RankGroup {
     unsigned long long mine = value, result = 0;
     enter();
     MPI_Request request;
-    MPI_Iallreduce(&mine, &result, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, MPI_COMM_WORLD, &request);
+    watched([&] { MPI_Iallreduce(&mine, &result, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, MPI_COMM_WORLD, &request); });
     wait(request);
     return result;
   }
@@ -133,16 +159,24 @@ class MpiRankGroup : public RankGroup {
 
   void progress() override {
     int flag = 0;
-    MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, MPI_STATUS_IGNORE);
+    watched([&] { MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, MPI_STATUS_IGNORE); });
   }
 
   double communication_seconds() const override { return communication_; }
 
  private:
+  // An MPI call that should return at once, watched by watch_ (a call that does not return
+  // within the timeout ends the process).
+  template <class Call>
+  void watched(Call call) {
+    const WatchedCall in(watch_);
+    call();
+  }
+
   void barrier_untimed() {
     enter();
     MPI_Request request;
-    MPI_Ibarrier(MPI_COMM_WORLD, &request);
+    watched([&] { MPI_Ibarrier(MPI_COMM_WORLD, &request); });
     wait(request);
   }
 
@@ -154,19 +188,23 @@ class MpiRankGroup : public RankGroup {
     std::vector<int> sizes(size_), offsets(size_);
     MPI_Request request;
     enter();
-    if (everyone) MPI_Iallgather(&n, 1, MPI_INT, sizes.data(), 1, MPI_INT, MPI_COMM_WORLD, &request);
-    else MPI_Igather(&n, 1, MPI_INT, sizes.data(), 1, MPI_INT, 0, MPI_COMM_WORLD, &request);
+    watched([&] {
+      if (everyone) MPI_Iallgather(&n, 1, MPI_INT, sizes.data(), 1, MPI_INT, MPI_COMM_WORLD, &request);
+      else MPI_Igather(&n, 1, MPI_INT, sizes.data(), 1, MPI_INT, 0, MPI_COMM_WORLD, &request);
+    });
     wait(request);
     const bool receives = everyone || rank_ == 0;
     const int total = place(sizes, offsets);
     std::vector<char> all(receives ? static_cast<std::size_t>(total) : 0);
     enter();
-    if (everyone)
-      MPI_Iallgatherv(mine.data(), n, MPI_CHAR, all.data(), sizes.data(), offsets.data(), MPI_CHAR, MPI_COMM_WORLD,
-                      &request);
-    else
-      MPI_Igatherv(mine.data(), n, MPI_CHAR, all.data(), sizes.data(), offsets.data(), MPI_CHAR, 0, MPI_COMM_WORLD,
-                   &request);
+    watched([&] {
+      if (everyone)
+        MPI_Iallgatherv(mine.data(), n, MPI_CHAR, all.data(), sizes.data(), offsets.data(), MPI_CHAR, MPI_COMM_WORLD,
+                        &request);
+      else
+        MPI_Igatherv(mine.data(), n, MPI_CHAR, all.data(), sizes.data(), offsets.data(), MPI_CHAR, 0, MPI_COMM_WORLD,
+                     &request);
+    });
     wait(request);
     if (!receives) return {};
     std::vector<std::vector<char>> out(size_);
@@ -188,6 +226,7 @@ class MpiRankGroup : public RankGroup {
   // they did not, which AddressSanitizer caught over TCP), even when complete() throws: the
   // operands are static or members.
   void post_at_rank0(const long long* operand, long long* result, int count, MPI_Aint slot, MPI_Op op) {
+    const WatchedCall call(watch_);
     MPI_Rget_accumulate(operand, operand ? count : 0, MPI_LONG_LONG, result, count, MPI_LONG_LONG, 0, slot, count,
                         MPI_LONG_LONG, op, window_, &pending_[pending_count_++]);
   }
@@ -206,7 +245,7 @@ class MpiRankGroup : public RankGroup {
   void complete() {
     const Clock::time_point start = Clock::now();
     for (int done = 0;;) {
-      MPI_Testall(pending_count_, pending_, &done, MPI_STATUSES_IGNORE);
+      watched([&] { MPI_Testall(pending_count_, pending_, &done, MPI_STATUSES_IGNORE); });
       if (done) break;
       if (timeout_ > 0.0 && seconds_since(start) > timeout_) throw RankTimeout(not_answered({0}));
       nap_after(start);
@@ -225,25 +264,25 @@ class MpiRankGroup : public RankGroup {
   // the timeout (while it waits for a healthy rank, rank 0 gives them).
   void wait(MPI_Request& request) {
     int done = 0;
-    MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+    watched([&] { MPI_Test(&request, &done, MPI_STATUS_IGNORE); });
     if (done) return;
     const Clock::time_point start = Clock::now();
-    const int watched = rank_ == 0 ? size_ : 1;  // rank 0 watches every rank; the others, rank 0
-    std::vector<long long> beats(watched, -1);
-    std::vector<Clock::time_point> seen(watched, start);
+    const int observed = rank_ == 0 ? size_ : 1;  // rank 0 watches every rank; the others, rank 0
+    std::vector<long long> beats(observed, -1);
+    std::vector<Clock::time_point> seen(observed, start);
     Clock::time_point looked = start;
     for (;;) {
-      MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+      watched([&] { MPI_Test(&request, &done, MPI_STATUS_IGNORE); });
       if (done) return;
       nap_after(start);
       if (timeout_ <= 0.0 || seconds_since(looked) < kWatchEvery) continue;
       looked = Clock::now();
       note_beat();
-      post_read_notes(watched);
+      post_read_notes(observed);
       complete();
       const std::vector<long long>& notes = notes_;
       std::vector<int> late;
-      for (int r = 0; r < watched; ++r) {
+      for (int r = 0; r < observed; ++r) {
         if (r == rank_) continue;
         if (notes[2 * r + 1] != beats[r]) beats[r] = notes[2 * r + 1], seen[r] = looked;
         if ((rank_ != 0 || notes[2 * r] < calls_) && seconds_since(seen[r]) > timeout_) late.push_back(r);
@@ -264,7 +303,7 @@ class MpiRankGroup : public RankGroup {
   }
 
   int rank_, size_;
-  double timeout_;
+  double timeout_;  // --rank-timeout, plus kOthersLater on ranks other than 0
   std::size_t count_ = 0;
   long long* slots_ = nullptr;
   long long calls_ = 0;
@@ -276,6 +315,7 @@ class MpiRankGroup : public RankGroup {
   std::vector<long long> notes_;
   MPI_Request pending_[2];
   int pending_count_ = 0;
+  CallWatch watch_;  // last: its thread stops first
 };
 
 }  // namespace

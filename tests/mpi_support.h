@@ -41,37 +41,43 @@ inline void expect_same_pixels(const std::string& a, const std::string& b) {
 }
 
 // A shell script that starts the job in `$@` in the background, waits for its output file
-// `$1` (a first checkpoint), sends SIGNAL to the processes whose environment matches
-// `which` (e.g. OMPI_COMM_WORLD_RANK=1; empty: mpirun itself), waits for the job, and prints
-// "rc=CODE ms=MILLISECONDS" (from the signal to the job's end).
-inline std::string signal_script(const std::string& signal, const std::string& which) {
+// `$1` (a first checkpoint), runs `action` (shell, on the process "$p") on the processes whose
+// environment matches `which` (e.g. OMPI_COMM_WORLD_RANK=1; empty: mpirun itself), waits
+// for the job, and prints "rc=CODE ms=MILLISECONDS" (from the action's end to the job's).
+inline std::string job_script(const std::string& which, const std::string& action) {
   return "out=$1; shift\n"
          "\"$@\" > /dev/null 2> \"$out.log\" &\n"
          "job=$!\n"
          "for i in $(seq 1 3000); do [ -f \"$out\" ] && break; sleep 0.01; done\n"
-         "t0=$(date +%s%N)\n"
          "for p in $(pgrep -f -- \"$out\"); do\n" +
-         (which.empty() ? std::string("  if [ \"$(cat /proc/$p/comm)\" = mpirun ]; then kill -" + signal + " \"$p\"; signalled=\"$signalled $p\"; fi\n")
-                        : "  if grep -qa \"" + which + "\" \"/proc/$p/environ\" 2>/dev/null; then kill -" + signal +
-                              " \"$p\"; signalled=\"$signalled $p\"; fi\n") +
+         (which.empty() ? std::string("  if [ \"$(cat /proc/$p/comm)\" = mpirun ]; then\n")
+                        : "  if grep -qa \"" + which + "\" \"/proc/$p/environ\" 2>/dev/null; then\n") +
+         "    " + action + "\n"
+         "    acted=\"$acted $p\"\n"
+         "  fi\n"
          "done\n"
+         "t0=$(date +%s%N)\n"
          "wait $job; rc=$?\n"
-         "for p in $signalled; do kill -9 \"$p\" 2> /dev/null; done  # none should be left\n"
+         "for p in $acted; do kill -9 \"$p\" 2> /dev/null; done  # none should be left\n"
          "echo \"rc=$rc ms=$(( ($(date +%s%N) - t0) / 1000000 ))\"\n";
 }
 
-// A job run under signal_script: its exit code, the milliseconds from the signal to its end,
-// and its standard error.
+// job_script sending SIGNAL.
+inline std::string signal_script(const std::string& signal, const std::string& which) {
+  return job_script(which, "kill -" + signal + " \"$p\"");
+}
+
+// A job run under job_script: its exit code, the milliseconds from the action (a signal) to
+// its end, and its standard error.
 struct SignalledJob {
   int rc = -1, ms = -1;
   std::string log;
 };
 
-inline SignalledJob run_signalled(const std::string& out, const std::string& signal, const std::string& which,
-                                  const std::string& job) {
+inline SignalledJob run_script(const std::string& out, const std::string& script_text, const std::string& job) {
   const std::string script = out + ".sh";
   {
-    std::ofstream(script) << signal_script(signal, which);
+    std::ofstream(script) << script_text;
   }
   const CommandResult r = run_command("bash " + quote(script) + " " + quote(out) + " " + job);
   SignalledJob j;
@@ -79,6 +85,11 @@ inline SignalledJob run_signalled(const std::string& out, const std::string& sig
   std::ifstream in(out + ".log");
   j.log.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   return j;
+}
+
+inline SignalledJob run_signalled(const std::string& out, const std::string& signal, const std::string& which,
+                                  const std::string& job) {
+  return run_script(out, signal_script(signal, which), job);
 }
 
 // The partial frame `out`, resumed in one process, is the uninterrupted render's, bit for bit.

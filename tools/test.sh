@@ -4,7 +4,7 @@
 #     scenes, and fuzz.gltf_loader: the libFuzzer target (built with clang in build-fuzz/)
 #     for TESSERA_FUZZ_SECONDS (60).
 #  2. build-asan/: the whole suite again under AddressSanitizer + UndefinedBehaviorSanitizer.
-#  3. build-tsan/: the scheduler, determinism and resume tests under ThreadSanitizer.
+#  3. build-tsan/: the scheduler, determinism, resume and call-watch tests under ThreadSanitizer.
 # Arguments go to the first CTest run (e.g. -R Resume). TESSERA_SANITIZERS=0 skips 2 and 3
 # (a quicker local run). docs/reliability.md has the timings.
 set -euo pipefail
@@ -45,4 +45,4 @@ configure_and_build "$build-asan" "" -- "${sanitizer_flags[@]}" "-DTESSERA_SANIT
 configure_and_build "$build-tsan" tessera_tests -- -DCMAKE_CXX_COMPILER=clang++ "${sanitizer_flags[@]}" \
   -DTESSERA_SANITIZE=thread
 (cd "$build-tsan" && TSAN_OPTIONS="suppressions=$root/tools/tsan.supp halt_on_error=1 ${TSAN_OPTIONS:-}" \
-  ctest --output-on-failure -j "$jobs" -R '^(Schedulers|TileScheduler|WorkPlan|RenderStats\.|RenderDeterminism|Resume\.|Checkpoint|TimeLimit)')
+  ctest --output-on-failure -j "$jobs" -R '^(Schedulers|TileScheduler|WorkPlan|RenderStats\.|RenderDeterminism|Resume\.|Checkpoint|TimeLimit|CallWatch)')
