@@ -58,8 +58,8 @@ constexpr double kOthersLater = 5.0;
 void stuck_in_mpi(int rank, double seconds) {
   const std::string who = rank == 0 ? "" : "rank " + std::to_string(rank) + ": ";
   std::fprintf(stderr,
-               "tessera: %serror: an MPI call has not returned for %.3g s (a rank holding a lock in rank 0's window "
-               "is stopped, hung or cut off): ending the job\n",
+               "tessera: %serror: an MPI call has not returned for %.3g s (a rank is stopped, hung or cut off, perhaps "
+               "holding a lock in rank 0's window): ending the job\n",
                who.c_str(), seconds);
   std::fflush(stderr);
   std::_Exit(1);
@@ -94,8 +94,10 @@ class MpiRankGroup : public RankGroup {
     MPI_Barrier(MPI_COMM_WORLD);  // rank 0's slots are zero before anyone writes them
   }
   ~MpiRankGroup() override {
-    MPI_Win_unlock_all(window_);
-    MPI_Win_free(&window_);
+    watched([&] {
+      MPI_Win_unlock_all(window_);
+      MPI_Win_free(&window_);  // collective: waits for every rank
+    });
   }
 
   int rank() const override { return rank_; }
@@ -334,9 +336,16 @@ MpiSession::MpiSession(int& argc, char**& argv) {
   MPI_Comm_size(MPI_COMM_WORLD, &size_);
 }
 
-MpiSession::~MpiSession() { MPI_Finalize(); }
+MpiSession::~MpiSession() {
+  // Collective too; watched as the group's calls were (the group is gone by now).
+  CallWatch watch(timeout_ > 0.0 ? timeout_ + (rank_ == 0 ? 0.0 : kOthersLater) : 0.0,
+                  [rank = rank_](double seconds) { stuck_in_mpi(rank, seconds); });
+  const WatchedCall call(watch);
+  MPI_Finalize();
+}
 
-std::unique_ptr<RankGroup> MpiSession::ranks(double timeout) const {
+std::unique_ptr<RankGroup> MpiSession::ranks(double timeout) {
+  timeout_ = timeout;
   return std::make_unique<MpiRankGroup>(rank_, size_, timeout);
 }
 

@@ -35,12 +35,15 @@ class MpiSession {
   // wave of a frame rendered alone, waiting) for `timeout` seconds; another rank, waiting,
   // throws when rank 0 has given none for that long, or has not completed a one-sided
   // operation (the counter, the notes) for that long. 0: no watchdog.
-  std::unique_ptr<RankGroup> ranks(double timeout) const;
+  // Every MPI call of the group, and MPI_Finalize after it, is also watched by a thread that
+  // ends the process when one has not returned within the timeout (renderer/call_watch.h).
+  std::unique_ptr<RankGroup> ranks(double timeout);
   // Ends every rank's process (MPI_Abort), e.g. when this rank failed and the others wait.
   [[noreturn]] static void abort_all(int exit_code);
 
  private:
   int rank_ = 0, size_ = 1;
+  double timeout_ = 0.0;  // the group's, for MPI_Finalize
 };
 
 }  // namespace tessera

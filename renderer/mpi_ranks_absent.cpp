@@ -14,7 +14,7 @@ MpiSession::MpiSession(int&, char**&) {
 
 MpiSession::~MpiSession() = default;
 
-std::unique_ptr<RankGroup> MpiSession::ranks(double) const { return nullptr; }
+std::unique_ptr<RankGroup> MpiSession::ranks(double) { return nullptr; }
 
 void MpiSession::abort_all(int exit_code) { std::exit(exit_code); }
 
