@@ -45,6 +45,24 @@ constexpr double kSpinSeconds = 0.01;
 constexpr auto kNap = std::chrono::microseconds(200);
 constexpr double kWatchEvery = 0.05;  // seconds between a waiting rank's looks at the notes
 
+// Time this process itself was stopped (SIGSTOP, then mpirun's SIGCONT as it ends the job; a
+// frozen machine) is no other rank's silence: a waiting loop's iteration that took longer
+// than kLongestIteration was such a stop, and the loop's deadlines move by the excess.
+// Without it a rank stopped while waiting gave a second verdict, on the others, when resumed.
+constexpr Clock::duration kLongestIteration = std::chrono::seconds(1);
+class StopClock {
+ public:
+  Clock::duration stopped() {
+    const Clock::time_point now = Clock::now();
+    const Clock::duration gap = now - last_;
+    last_ = now;
+    return gap > kLongestIteration ? gap - kLongestIteration : Clock::duration::zero();
+  }
+
+ private:
+  Clock::time_point last_ = Clock::now();
+};
+
 // Ranks other than 0 wait this much longer than --rank-timeout before they give up on rank 0
 // (between calls or inside one): when rank 0 ends the job (MPI_Abort, or exiting), mpirun
 // resumes and ends the others (SIGCONT, SIGTERM, SIGKILL a second later:
@@ -245,10 +263,12 @@ class MpiRankGroup : public RankGroup {
   // Tests the posted operations in a loop, as wait() does a collective call: where rank 0
   // must serve them and is stopped, a blocking MPI_Win_flush would wait forever.
   void complete() {
-    const Clock::time_point start = Clock::now();
+    Clock::time_point start = Clock::now();
+    StopClock stops;
     for (int done = 0;;) {
       watched([&] { MPI_Testall(pending_count_, pending_, &done, MPI_STATUSES_IGNORE); });
       if (done) break;
+      start += stops.stopped();
       if (timeout_ > 0.0 && seconds_since(start) > timeout_) throw RankTimeout(not_answered({0}));
       nap_after(start);
     }
@@ -273,9 +293,12 @@ class MpiRankGroup : public RankGroup {
     std::vector<long long> beats(observed, -1);
     std::vector<Clock::time_point> seen(observed, start);
     Clock::time_point looked = start;
+    StopClock stops;
     for (;;) {
       watched([&] { MPI_Test(&request, &done, MPI_STATUS_IGNORE); });
       if (done) return;
+      if (const Clock::duration stopped = stops.stopped(); stopped > Clock::duration::zero())
+        for (Clock::time_point& t : seen) t += stopped;
       nap_after(start);
       if (timeout_ <= 0.0 || seconds_since(looked) < kWatchEvery) continue;
       looked = Clock::now();

@@ -1,13 +1,18 @@
 // CallWatch (renderer/call_watch.h): a call that outlasts the timeout gets one verdict, no
 // sooner than the timeout and at most a look (50 ms) plus scheduling later; time between
-// calls and calls shorter than the timeout never do.
+// calls, calls shorter than the timeout and time the process was stopped never do.
 #include "renderer/call_watch.h"
 
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <csignal>
+#include <cstdlib>
+#include <string>
 #include <chrono>
 #include <thread>
+
+#include <unistd.h>
 
 namespace tessera {
 namespace {
@@ -50,6 +55,26 @@ TEST(CallWatch, ShortCallsAndTheTimeBetweenThemGetNone) {
     std::this_thread::sleep_for(milliseconds(20));
   }
   std::this_thread::sleep_for(milliseconds(700));  // outside any call, past the timeout
+  EXPECT_EQ(verdicts, 0);
+}
+
+// The process stopped (SIGSTOP) inside a call for twice the timeout, then resumed (SIGCONT
+// from a child, as mpirun sends one when it ends a job): the stop is not the call's, at most
+// one look's second of it counts, and a call that returns soon after gets no verdict.
+// Counted from the call's start, it would (4 s > 2 s).
+TEST(CallWatch, TimeTheProcessWasStoppedDoesNotCount) {
+  std::atomic<int> verdicts{0};
+  CallWatch watch(2.0, [&](double) { ++verdicts; });
+  const Clock::time_point start = Clock::now();
+  {
+    const WatchedCall call(watch);
+    const std::string resume = "(sleep 4; kill -CONT " + std::to_string(getpid()) + ") &";
+    ASSERT_EQ(std::system(resume.c_str()), 0);
+    raise(SIGSTOP);
+    std::this_thread::sleep_for(milliseconds(100));
+  }
+  ASSERT_GE(seconds_since(start), 3.5) << "the process was not stopped: nothing tested";
+  std::this_thread::sleep_for(milliseconds(200));  // a look after leaving
   EXPECT_EQ(verdicts, 0);
 }
 
