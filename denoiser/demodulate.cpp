@@ -1,12 +1,23 @@
 #include "denoiser/demodulate.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace tessera::denoiser {
 
 Planes demodulation_factor(const DenoiseInput& in, float epsilon) {
   Planes f = to_planes(in.albedo, in.width, in.height, 3);
   for (float& v : f.data) v = std::max(v, 0.0f) + epsilon;
+  return f;
+}
+
+Planes demodulation_factor(const Planes& features, float epsilon) {
+  Planes f(features.width, features.height, 3);
+  for (std::size_t i = 0; i < f.pixels(); ++i)
+    for (int k = 0; k < 3; ++k) {
+      const float a = features.at(k, i);
+      f.at(k, i) = (std::isfinite(a) ? std::max(a, 0.0f) : 0.0f) + epsilon;
+    }
   return f;
 }
 

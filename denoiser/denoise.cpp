@@ -25,10 +25,14 @@ DenoiseResult run(const DenoiseInput& in, const DenoiseParams& p) {
   std::vector<Filtered> passes{regress(halves, filtered_features, p.radius, p.stride, p)};
   if (p.wide_radius > 0) passes.push_back(regress(halves, filtered_features, p.wide_radius, p.wide_stride, p));
   if (p.demodulate) {  // the selection judges colour, as relMSE does
-    remodulate(halves, factor);
+    remodulate(halves, factor);  // back to the colour as given
+    // The filtered illumination times the prefiltered albedo: times the noisy one, every
+    // candidate carried the albedo's noise (under depth of field and at edges, which surface
+    // a pixel's samples saw) back in whole.
+    const Planes filtered_factor = demodulation_factor(filtered_features, p.demodulation_epsilon);
     for (Filtered& filtered : passes)
       for (auto& half : filtered.filtered)
-        for (Planes& candidate : half) remodulate(candidate, factor);
+        for (Planes& candidate : half) remodulate(candidate, filtered_factor);
   }
   const Selection selection = select_and_combine(halves, passes, unfiltered_colour(in), p.selection_radius, p.selection_blend_radius,
                                                  p.half_variance_bias);

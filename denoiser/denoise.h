@@ -8,7 +8,8 @@
 // estimated in that range: a bright, noisy highlight is then far from a dark, quiet pixel
 // (compared linearly, its variance made it "similar" to everything, and its energy leaked
 // into dark neighbours' fits as halos). The colour is regressed demodulated, divided by the
-// albedo plus epsilon (denoiser/demodulate.h), and multiplied back before the selection. Two
+// albedo plus epsilon (denoiser/demodulate.h), and multiplied back, by the prefiltered albedo,
+// before the selection. Two
 // candidate bandwidths are run in each of two window sizes (9x9 and 17x17); per pixel, the
 // four and the unfiltered colour are blended by the inverse square of the relative error the
 // half buffers estimate (denoiser/selection.h).
