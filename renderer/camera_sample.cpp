@@ -30,7 +30,8 @@ CameraSampler::CameraSampler(const RenderScene& scene, const RenderCamera& camer
   }
   uniform_background_ = !scene.environment.has_image();
   PathCounters once;
-  background_ = camera_ray_escaped(scene, params_, Ray{vec3(0.0f), vec3(0.0f, 0.0f, -1.0f)}, once);  // any ray, when uniform
+  background_sample_.radiance =
+      camera_ray_escaped(scene, params_, Ray{vec3(0.0f), vec3(0.0f, 0.0f, -1.0f)}, once);  // any ray, when uniform
   background_dropped_ = once.dropped > 0;
 }
 
@@ -38,10 +39,7 @@ CameraSampler::CameraSampler(const RenderScene& scene, const RenderCamera& camer
 // camera_ray_escaped gives any ray, with no ray made (the camera is well formed: its rays are
 // finite, as coverage_ checks).
 void CameraSampler::background_alone(int n, PathCounters& counters, CameraSampleResult* out) const {
-  for (int k = 0; k < n; ++k) {
-    out[k] = CameraSampleResult{};
-    out[k].radiance = background_;
-  }
+  for (int k = 0; k < n; ++k) out[k] = background_sample_;
   if (background_dropped_) counters.dropped += n;
 }
 
