@@ -47,25 +47,18 @@ std::string terminal_progress_line(const ProgressFields& f, int columns) {
 ProgressDisplay::ProgressDisplay(const RenderMonitor& monitor, ProgressOptions options)
     : monitor_(monitor), options_(std::move(options)), terminal_(::isatty(STDERR_FILENO) == 1),
       start_(std::chrono::steady_clock::now()) {
-  if (!options_.quiet && options_.total_samples > 0) thread_ = std::thread([this] { run(); });
+  // A terminal gets a live bar; a log gets a line every 10 s.
+  if (!options_.quiet && options_.total_samples > 0)
+    redraw_.emplace(std::chrono::duration<double>(terminal_ ? 0.2 : 10.0), [this] {
+      draw(false);
+      return true;
+    });
 }
 
 ProgressDisplay::~ProgressDisplay() {
-  if (!thread_.joinable()) return;
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    stop_ = true;
-  }
-  wake_.notify_all();
-  thread_.join();
+  if (!redraw_) return;
+  redraw_.reset();  // stops it
   draw(true);
-}
-
-void ProgressDisplay::run() {
-  // A terminal gets a live bar; a log gets a line every 10 s.
-  const auto period = terminal_ ? std::chrono::milliseconds(200) : std::chrono::milliseconds(10000);
-  std::unique_lock<std::mutex> lock(mutex_);
-  while (!wake_.wait_for(lock, period, [this] { return stop_; })) draw(false);
 }
 
 std::string ProgressDisplay::converged_text() const {

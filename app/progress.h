@@ -5,12 +5,11 @@
 
 #include <atomic>
 #include <chrono>
-#include <condition_variable>
-#include <mutex>
+#include <optional>
 #include <string>
-#include <thread>
 
 #include "app/terminal.h"
+#include "renderer/periodic_thread.h"
 #include "renderer/render.h"
 
 namespace tessera {
@@ -31,7 +30,6 @@ class ProgressDisplay {
   ProgressDisplay& operator=(const ProgressDisplay&) = delete;
 
  private:
-  void run();
   void draw(bool final_line);
   std::string converged_text() const;
 
@@ -40,10 +38,7 @@ class ProgressDisplay {
   bool terminal_;
   TerminalWidth width_;
   std::chrono::steady_clock::time_point start_;
-  std::mutex mutex_;
-  std::condition_variable wake_;
-  bool stop_ = false;
-  std::thread thread_;
+  std::optional<PeriodicThread> redraw_;  // last: it draws with the members above
 };
 
 std::string format_duration(double seconds);

@@ -6,11 +6,11 @@
 #pragma once
 
 #include <atomic>
-#include <condition_variable>
 #include <cstdint>
 #include <functional>
-#include <mutex>
-#include <thread>
+#include <optional>
+
+#include "renderer/periodic_thread.h"
 
 namespace tessera {
 
@@ -20,7 +20,6 @@ class CallWatch {
   // call has lasted longer than `timeout` seconds; it is meant to end the process. A
   // timeout of 0 watches nothing (no thread).
   CallWatch(double timeout, std::function<void(double seconds)> stuck);
-  ~CallWatch();
   CallWatch(const CallWatch&) = delete;
   CallWatch& operator=(const CallWatch&) = delete;
 
@@ -31,15 +30,15 @@ class CallWatch {
 
  private:
   static constexpr std::int64_t kOutside = INT64_MIN;
-  void run();
+  bool look();  // false once the verdict is given
 
   double timeout_;
   std::function<void(double)> stuck_;
   std::atomic<std::int64_t> entered_{kOutside};  // steady-clock nanoseconds at enter()
-  std::mutex mutex_;
-  std::condition_variable wake_;
-  bool stopping_ = false;
-  std::thread thread_;
+  std::int64_t call_ = kOutside;  // the look's: the entered_ value of the call being counted
+  double inside_ = 0.0;  // seconds of it counted
+  std::int64_t looked_;  // when the last look was
+  std::optional<PeriodicThread> thread_;  // last: it looks at the members above
 };
 
 // enter() for the lifetime of the object.
