@@ -360,8 +360,11 @@ MpiSession::MpiSession(int& argc, char**& argv) {
 }
 
 MpiSession::~MpiSession() {
-  // Collective too; watched as the group's calls were (the group is gone by now).
-  CallWatch watch(timeout_ > 0.0 ? timeout_ + (rank_ == 0 ? 0.0 : kOthersLater) : 0.0,
+  // Collective too; watched as the group's calls were (the group is gone by now), but given at
+  // least kFinalizeSeconds: Open MPI's own teardown is not a rank's work between contacts, and a
+  // short --rank-timeout must not fail a finished job here.
+  constexpr double kFinalizeSeconds = 30.0;
+  CallWatch watch(timeout_ > 0.0 ? std::max(timeout_ + (rank_ == 0 ? 0.0 : kOthersLater), kFinalizeSeconds) : 0.0,
                   [rank = rank_](double seconds) { stuck_in_mpi(rank, seconds); });
   const WatchedCall call(watch);
   MPI_Finalize();
