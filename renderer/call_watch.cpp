@@ -6,16 +6,13 @@
 namespace tessera {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
 std::int64_t now_ns() {
-  return std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now().time_since_epoch()).count();
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(StopClock::Clock::now().time_since_epoch()).count();
 }
 
 }  // namespace
 
-CallWatch::CallWatch(double timeout, std::function<void(double)> stuck)
-    : timeout_(timeout), stuck_(std::move(stuck)), looked_(now_ns()) {
+CallWatch::CallWatch(double timeout, std::function<void(double)> stuck) : timeout_(timeout), stuck_(std::move(stuck)) {
   // A look every 50 ms (or a quarter of the timeout, if shorter): the verdict comes at most
   // that late.
   if (timeout_ > 0.0)
@@ -24,24 +21,20 @@ CallWatch::CallWatch(double timeout, std::function<void(double)> stuck)
 
 void CallWatch::enter() { entered_.store(now_ns(), std::memory_order_relaxed); }
 
-// The time inside a call is counted look by look, each look's share capped at kLongestLook: a
-// longer gap between looks means this process itself was stopped (SIGSTOP, and mpirun's
-// SIGCONT as it ends the job; a frozen machine), which is not the call's doing. Counted from
-// the call's start, a rank stopped inside a call gave a second verdict when resumed.
+// The time inside a call is counted look by look, without the time this process was stopped
+// (renderer/stop_clock.h).
 bool CallWatch::look() {
-  constexpr double kLongestLook = 1.0;
-  const std::int64_t now = now_ns(), entered = entered_.load(std::memory_order_relaxed);
-  const double since_look = std::min(static_cast<double>(now - looked_) * 1e-9, kLongestLook);
-  looked_ = now;
+  const double counted = std::chrono::duration<double>(stops_.look().counted).count();
+  const std::int64_t entered = entered_.load(std::memory_order_relaxed);
   if (entered == kOutside) {
     call_ = kOutside;
     return true;
   }
-  if (entered != call_) {
+  if (entered != call_) {  // a new call: since it began, at most this look's share
     call_ = entered;
-    inside_ = std::min(static_cast<double>(now - entered) * 1e-9, since_look);
+    inside_ = std::min(static_cast<double>(now_ns() - entered) * 1e-9, counted);
   } else {
-    inside_ += since_look;
+    inside_ += counted;
   }
   if (inside_ <= timeout_) return true;
   stuck_(inside_);

@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "renderer/periodic_thread.h"
+#include "renderer/stop_clock.h"
 
 namespace tessera {
 
@@ -37,7 +38,7 @@ class CallWatch {
   std::atomic<std::int64_t> entered_{kOutside};  // steady-clock nanoseconds at enter()
   std::int64_t call_ = kOutside;  // the look's: the entered_ value of the call being counted
   double inside_ = 0.0;  // seconds of it counted
-  std::int64_t looked_;  // when the last look was
+  StopClock stops_;  // the time between looks
   std::optional<PeriodicThread> thread_;  // last: it looks at the members above
 };
 

@@ -1,6 +1,7 @@
 #include "renderer/mpi_ranks.h"
 
 #include "renderer/call_watch.h"
+#include "renderer/stop_clock.h"
 
 #include <algorithm>
 #include <chrono>
@@ -45,30 +46,17 @@ constexpr double kSpinSeconds = 0.01;
 constexpr auto kNap = std::chrono::microseconds(200);
 constexpr double kWatchEvery = 0.05;  // seconds between a waiting rank's looks at the notes
 
-// Time this process itself was stopped (SIGSTOP, then mpirun's SIGCONT as it ends the job; a
-// frozen machine) is no other rank's silence: a waiting loop's iteration that took longer
-// than kLongestIteration was such a stop, and the loop's deadlines move by the excess.
-// Without it a rank stopped while waiting gave a second verdict, on the others, when resumed.
-constexpr Clock::duration kLongestIteration = std::chrono::seconds(1);
-class StopClock {
- public:
-  Clock::duration stopped() {
-    const Clock::time_point now = Clock::now();
-    const Clock::duration gap = now - last_;
-    last_ = now;
-    return gap > kLongestIteration ? gap - kLongestIteration : Clock::duration::zero();
-  }
-
- private:
-  Clock::time_point last_ = Clock::now();
-};
-
 // Ranks other than 0 wait this much longer than --rank-timeout before they give up on rank 0
 // (between calls or inside one): when rank 0 ends the job (MPI_Abort, or exiting), mpirun
 // resumes and ends the others (SIGCONT, SIGTERM, SIGKILL a second later:
 // odls_base_sigkill_timeout); a rank that had waited as long as rank 0 would then give a
 // second verdict on a job already ending. So a job ends with one message.
 constexpr double kOthersLater = 5.0;
+
+// How long this rank waits for others (0: forever), from --rank-timeout.
+double patience(double rank_timeout, int rank) {
+  return rank_timeout > 0.0 ? rank_timeout + (rank == 0 ? 0.0 : kOthersLater) : 0.0;
+}
 
 // The call watch's verdict: one message, then the process ends with exit code 1 (the app's
 // kExitFailure, as MPI_Abort(1) gives); mpirun then ends the other ranks. MPI itself cannot
@@ -94,7 +82,7 @@ class MpiRankGroup : public RankGroup {
   MpiRankGroup(int rank, int size, double timeout)
       : rank_(rank),
         size_(size),
-        timeout_(timeout > 0.0 ? timeout + (rank == 0 ? 0.0 : kOthersLater) : 0.0),
+        timeout_(patience(timeout, rank)),
         notes_(2 * static_cast<std::size_t>(size)),
         watch_(timeout_, [rank](double seconds) { stuck_in_mpi(rank, seconds); }) {
     const MPI_Aint slots = rank == 0 ? arrived_slot(size) : 0;
@@ -268,7 +256,7 @@ class MpiRankGroup : public RankGroup {
     for (int done = 0;;) {
       watched([&] { MPI_Testall(pending_count_, pending_, &done, MPI_STATUSES_IGNORE); });
       if (done) break;
-      start += stops.stopped();
+      start += stops.look().stopped;  // time this rank was stopped is not rank 0's silence
       if (timeout_ > 0.0 && seconds_since(start) > timeout_) throw RankTimeout(not_answered({0}));
       nap_after(start);
     }
@@ -297,8 +285,8 @@ class MpiRankGroup : public RankGroup {
     for (;;) {
       watched([&] { MPI_Test(&request, &done, MPI_STATUS_IGNORE); });
       if (done) return;
-      if (const Clock::duration stopped = stops.stopped(); stopped > Clock::duration::zero())
-        for (Clock::time_point& t : seen) t += stopped;
+      if (const Clock::duration stopped = stops.look().stopped; stopped > Clock::duration::zero())
+        for (Clock::time_point& t : seen) t += stopped;  // nor the others
       nap_after(start);
       if (timeout_ <= 0.0 || seconds_since(looked) < kWatchEvery) continue;
       looked = Clock::now();
@@ -364,7 +352,8 @@ MpiSession::~MpiSession() {
   // least kFinalizeSeconds: Open MPI's own teardown is not a rank's work between contacts, and a
   // short --rank-timeout must not fail a finished job here.
   constexpr double kFinalizeSeconds = 30.0;
-  CallWatch watch(timeout_ > 0.0 ? std::max(timeout_ + (rank_ == 0 ? 0.0 : kOthersLater), kFinalizeSeconds) : 0.0,
+  const double waits = patience(timeout_, rank_);
+  CallWatch watch(waits > 0.0 ? std::max(waits, kFinalizeSeconds) : 0.0,
                   [rank = rank_](double seconds) { stuck_in_mpi(rank, seconds); });
   const WatchedCall call(watch);
   MPI_Finalize();
