@@ -6,9 +6,7 @@
 namespace tessera::denoiser {
 
 Planes demodulation_factor(const DenoiseInput& in, float epsilon) {
-  Planes f = to_planes(in.albedo, in.width, in.height, 3);
-  for (float& v : f.data) v = std::max(v, 0.0f) + epsilon;
-  return f;
+  return demodulation_factor(to_planes(in.albedo, in.width, in.height, 3), epsilon);
 }
 
 Planes demodulation_factor(const Planes& features, float epsilon) {

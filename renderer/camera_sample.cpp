@@ -30,8 +30,7 @@ CameraSampler::CameraSampler(const RenderScene& scene, const RenderCamera& camer
   }
   uniform_background_ = !scene.environment.has_image();
   PathCounters once;
-  background_sample_.radiance =
-      camera_ray_escaped(scene, params_, Ray{vec3(0.0f), vec3(0.0f, 0.0f, -1.0f)}, once);  // any ray, when uniform
+  background_ = camera_ray_escaped(scene, params_, Ray{vec3(0.0f), vec3(0.0f, 0.0f, -1.0f)}, once);  // any ray, when uniform
   background_dropped_ = once.dropped > 0;
 }
 
@@ -39,8 +38,16 @@ CameraSampler::CameraSampler(const RenderScene& scene, const RenderCamera& camer
 // camera_ray_escaped gives any ray, with no ray made (the camera is well formed: its rays are
 // finite, as coverage_ checks).
 void CameraSampler::background_alone(int n, PathCounters& counters, CameraSampleResult* out) const {
-  for (int k = 0; k < n; ++k) out[k] = background_sample_;
-  if (background_dropped_) counters.dropped += n;
+  const vec3& radiance = background_samples(n, counters);
+  for (int k = 0; k < n; ++k) {
+    out[k] = CameraSampleResult{};
+    out[k].radiance = radiance;
+  }
+}
+
+const vec3& CameraSampler::background_samples(int n, PathCounters& counters) const {
+  if (background_dropped_) counters.dropped += static_cast<std::uint64_t>(n);
+  return background_;
 }
 
 // The sample's point on the film (from the filter's draw `u`, the sampler's first), lens

@@ -42,11 +42,11 @@ class CameraSampler {
   // as above, records[s - begin] for sample s.
   // Whether every camera sample of frame pixel (fx, fy) is the uniform background with no ray
   // made (its rays cannot hit anything, renderer/camera_coverage.h): then each sample's result
-  // is background_sample() (valid, no hit), and the caller may sum them in closed form.
+  // is the radiance background_samples() gives (valid, no hit), and the caller may sum them
+  // in closed form.
   bool background_only(int fx, int fy) const { return uniform_background_ && !coverage_.may_hit(fx, fy); }
-  // Such a sample's result; background_dropped(): it counts as dropped (a non-finite background).
-  const CameraSampleResult& background_sample() const { return background_sample_; }
-  bool background_dropped() const { return background_dropped_; }
+  // n such samples: their radiance, each the same; counted as dropped when it is not finite.
+  const vec3& background_samples(int n, PathCounters& counters) const;
   template <typename Each>
   void sample_span(int fx, int fy, int begin, int end, PathCounters& counters, Each&& each,
                    PathRecord* const* records = nullptr) const {
@@ -75,7 +75,7 @@ class CameraSampler {
   // rays are not traced, and under a uniform background not even made.
   CameraCoverage coverage_;
   bool uniform_background_;
-  CameraSampleResult background_sample_;  // radiance: what camera_ray_escaped returns there
+  vec3 background_;  // what camera_ray_escaped returns there
   bool background_dropped_;  // it is not finite: each such sample is dropped
 };
 

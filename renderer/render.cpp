@@ -69,8 +69,7 @@ void render_tile(const CameraSampler& sampler, const RenderSettings& settings, c
       const int fx = x + window.x, fy = y + window.y;  // in the frame: what the samples depend on
       PixelSums sums;
       if (sampler.background_only(fx, fy)) {  // 79% of MetalRoughSpheres' samples at 640x360
-        add_background_samples(sums, begin, wave.end, sampler.background_sample().radiance);
-        if (sampler.background_dropped()) counters.path.dropped += static_cast<std::uint64_t>(wave.end - begin);
+        add_background_samples(sums, begin, wave.end, sampler.background_samples(wave.end - begin, counters.path));
       } else {
         sampler.sample_span(fx, fy, begin, wave.end, counters.path, [&](int s, const CameraSampleResult& r) {
           if (r.valid) add_sample(sums, s, glm::dvec3(r.radiance), r.first, r.depth);
