@@ -145,33 +145,8 @@ TextureImage make_texture_image(const Image& image, ColorEncoding encoding) {
 
 vec4 TextureImage::texel(int i, int j) const { return decode_texel(*this, index(i, j)); }
 
-namespace {
-
-// Where a lookup at uv reads: the bilinear's four texels (or the nearest one, in at[0]) and
-// the weights' fractions.
-struct TexelQuad {
-  std::size_t at[4];
-  float dx, dy;
-};
-
-// Everything locate() reads.
-struct LocateInputs {
-  int width = -1, height = -1;  // matches no image
-  WrapMode wrap_s{}, wrap_t{};
-  FilterMode filter{};
-  TextureTransform transform;
-  vec2 uv{0.0f};
-
-  bool same(const TextureImage& image, const TextureRef& ref, vec2 at) const {
-    return width == image.width && height == image.height && wrap_s == ref.wrap_s && wrap_t == ref.wrap_t &&
-           filter == ref.filter && same_bits(uv.x, at.x) && same_bits(uv.y, at.y) &&
-           same_bits(transform.offset.x, ref.transform.offset.x) && same_bits(transform.offset.y, ref.transform.offset.y) &&
-           same_bits(transform.rotation, ref.transform.rotation) && same_bits(transform.scale.x, ref.transform.scale.x) &&
-           same_bits(transform.scale.y, ref.transform.scale.y);
-  }
-};
-
-void locate_anew(const TextureImage& image, const TextureRef& ref, vec2 uv, TexelQuad& q) {
+TexelQuad locate_texels(const TextureImage& image, const TextureRef& ref, vec2 uv) {
+  TexelQuad q;
   uv = transform_uv(ref.transform, uv);
   if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) uv = vec2(0.0f);
   // Keep coordinates in int range before flooring; wrapping makes far values equivalent
@@ -187,48 +162,40 @@ void locate_anew(const TextureImage& image, const TextureRef& ref, vec2 uv, Texe
   auto row = [&](int r) { return r >= 0 && r < image.height ? r : wrap(r, image.height, ref.wrap_t); };
   if (ref.filter == FilterMode::Nearest) {
     q.at[0] = q.at[1] = q.at[2] = q.at[3] = image.index(column(i + (q.dx >= 0.5f)), row(j + (q.dy >= 0.5f)));
-    return;
+    return q;
   }
   const int i0 = column(i), i1 = column(i + 1), j0 = row(j), j1 = row(j + 1);
   q.at[0] = image.index(i0, j0);
   q.at[1] = image.index(i1, j0);
   q.at[2] = image.index(i0, j1);
   q.at[3] = image.index(i1, j1);
+  return q;
 }
 
-// A material's maps usually share their size, sampler and coordinates, and a hit reads each
-// twice (prefetch_texture, then sample_texture): the last place found is remembered per thread.
-// The result lives in the thread's record until its next locate(); callers read its fields
-// one by one, as they were stored (a copy, read in wider loads than those stores, stalled).
-const TexelQuad& locate(const TextureImage& image, const TextureRef& ref, vec2 uv) {
-  struct Last {
-    LocateInputs in;
-    TexelQuad quad{};
-  };
-  thread_local Last last;
-  if (!last.in.same(image, ref, uv)) {
-    last.in = {image.width, image.height, ref.wrap_s, ref.wrap_t, ref.filter, ref.transform, uv};
-    locate_anew(image, ref, uv, last.quad);
-  }
-  return last.quad;
-}
-
-}  // namespace
-
-vec4 sample_texture(const TextureImage& image, const TextureRef& ref, vec2 uv) {
-  const TexelQuad& q = locate(image, ref, uv);
-  if (ref.filter == FilterMode::Nearest) return decode_texel(image, q.at[0]);
+vec4 read_texels(const TextureImage& image, FilterMode filter, const TexelQuad& q) {
+  if (filter == FilterMode::Nearest) return decode_texel(image, q.at[0]);
   const float dx = q.dx, dy = q.dy;
   return (1 - dx) * (1 - dy) * decode_texel(image, q.at[0]) + dx * (1 - dy) * decode_texel(image, q.at[1]) +
          (1 - dx) * dy * decode_texel(image, q.at[2]) + dx * dy * decode_texel(image, q.at[3]);
 }
 
-void prefetch_texture(const TextureImage& image, const TextureRef& ref, vec2 uv) {
-  const TexelQuad& q = locate(image, ref, uv);
+void prefetch_texels(const TextureImage& image, const TexelQuad& q) {
   for (std::size_t at : q.at) {
     if (image.texels8.empty()) __builtin_prefetch(&image.texels_float[at]);
     else __builtin_prefetch(&image.texels8[at]);
   }
+}
+
+vec4 sample_texture(const TextureImage& image, const TextureRef& ref, vec2 uv) {
+  return read_texels(image, ref.filter, locate_texels(image, ref, uv));
+}
+
+bool same_sampling(const TextureImage& a, const TextureRef& ra, const TextureImage& b, const TextureRef& rb) {
+  const TextureTransform &ta = ra.transform, &tb = rb.transform;
+  return a.width == b.width && a.height == b.height && ra.texcoord == rb.texcoord && ra.wrap_s == rb.wrap_s &&
+         ra.wrap_t == rb.wrap_t && ra.filter == rb.filter && same_bits(ta.offset.x, tb.offset.x) &&
+         same_bits(ta.offset.y, tb.offset.y) && same_bits(ta.rotation, tb.rotation) &&
+         same_bits(ta.scale.x, tb.scale.x) && same_bits(ta.scale.y, tb.scale.y);
 }
 
 }  // namespace tessera

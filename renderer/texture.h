@@ -42,12 +42,25 @@ struct TextureImage {
 // (alpha is always linear), as glTF requires for baseColor and emissive textures.
 TextureImage make_texture_image(const Image& image, ColorEncoding encoding);
 
-// Bilinear (or nearest) lookup with wrap modes and KHR_texture_transform.
+// Where a lookup at uv reads: the bilinear's four texels (or the nearest one, in at[0]) and
+// the weights' fractions. The same in every image of one size under one sampler
+// (same_sampling), so a material whose maps share those finds it once per hit.
+struct TexelQuad {
+  std::size_t at[4];
+  float dx, dy;
+};
+// Wrap modes and KHR_texture_transform applied.
+TexelQuad locate_texels(const TextureImage& image, const TextureRef& ref, vec2 uv);
+// The bilinear (or nearest) lookup at q.
+vec4 read_texels(const TextureImage& image, FilterMode filter, const TexelQuad& q);
+// Starts loading the texels read_texels(image, ..., q) will read. Called for each of a hit's
+// textures before the first lookup, it overlaps their cache misses, which otherwise come one
+// after the other (each lookup waits for its texels before the next one starts).
+void prefetch_texels(const TextureImage& image, const TexelQuad& q);
+// read_texels at locate_texels.
 vec4 sample_texture(const TextureImage& image, const TextureRef& ref, vec2 uv);
-// Starts loading the texels sample_texture(image, ref, uv) will read. Called for each of a
-// hit's textures before the first lookup, it overlaps their cache misses, which otherwise
-// come one after the other (each lookup waits for its texels before the next one starts).
-void prefetch_texture(const TextureImage& image, const TextureRef& ref, vec2 uv);
+// Lookups through ra in a and through rb in b read the same places at every uv.
+bool same_sampling(const TextureImage& a, const TextureRef& ra, const TextureImage& b, const TextureRef& rb);
 
 float srgb_to_linear(float v);
 

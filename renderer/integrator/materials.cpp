@@ -53,11 +53,17 @@ MaterialTable::MaterialTable(const SceneDescription& scene) : materials_(scene.m
     constant_.push_back(!textured(m));
     constant_point_.push_back(constant_.back() ? evaluate(m, plain) : ShadingPoint{});
     texture_uses_.emplace_back();
+    shared_.emplace_back();
+    bool alike = true;
     for (const TextureSlot& slot : texture_slots(m)) {
       if (!slot.ref->present()) continue;
       const TextureImage& image = (slot.srgb ? srgb_ : linear_)[slot.ref->image];
       if (image.stored_bytes() > kPrefetchAbove) texture_uses_.back().push_back({&image, slot.ref});
+      TextureUse& first = shared_.back();
+      if (!first.image) first = {&image, slot.ref};
+      alike = alike && same_sampling(*first.image, *first.ref, image, *slot.ref);
     }
+    if (!alike) shared_.back() = {};
     prefetches_ = prefetches_ || !texture_uses_.back().empty();
   }
 }
@@ -76,10 +82,11 @@ float MaterialTable::opacity(int index, const vec2 uv[2], const vec4& color) con
   return glm::clamp(alpha, 0.0f, 1.0f);
 }
 
-vec4 MaterialTable::lookup(const TextureRef& ref, const std::vector<TextureImage>& images,
-                           const SurfaceHit& hit) const {
+vec4 MaterialTable::lookup(const TextureRef& ref, const std::vector<TextureImage>& images, const SurfaceHit& hit,
+                           const TexelQuad* shared) const {
   if (!ref.present()) return vec4(1.0f);
-  return sample_texture(images[ref.image], ref, hit.uv[ref.texcoord]);
+  const TextureImage& image = images[ref.image];
+  return shared ? read_texels(image, ref.filter, *shared) : sample_texture(image, ref, hit.uv[ref.texcoord]);
 }
 
 // The tangent-space normal map applied to the interpolated frame (glTF: RGB in [0,1] maps
@@ -101,10 +108,11 @@ bool tangent_frame(const SurfaceHit& hit, vec3& tangent, vec3& bitangent) {
 
 }  // namespace
 
-vec3 MaterialTable::perturbed_normal(const TextureRef& map, float scale, const SurfaceHit& hit) const {
+vec3 MaterialTable::perturbed_normal(const TextureRef& map, float scale, const SurfaceHit& hit,
+                                     const TexelQuad* shared) const {
   vec3 tangent, bitangent;
   if (!tangent_frame(hit, tangent, bitangent)) return vec3(0.0f);
-  vec3 n = vec3(lookup(map, linear_, hit)) * 2.0f - 1.0f;
+  vec3 n = vec3(lookup(map, linear_, hit, shared)) * 2.0f - 1.0f;
   n.x *= scale;
   n.y *= scale;
   const vec3 world = n.x * tangent + n.y * bitangent + n.z * hit.ns;
@@ -114,14 +122,15 @@ vec3 MaterialTable::perturbed_normal(const TextureRef& map, float scale, const S
 
 // KHR_materials_anisotropy: the direction (texture RG, else the tangent) rotated by
 // anisotropyRotation counter-clockwise in tangent space, and the strength x texture B.
-vec3 MaterialTable::anisotropy_direction(const Material& m, const SurfaceHit& hit, float& strength) const {
+vec3 MaterialTable::anisotropy_direction(const Material& m, const SurfaceHit& hit, float& strength,
+                                         const TexelQuad* shared) const {
   vec3 tangent, bitangent;
   strength = 0.0f;
   if (!(m.anisotropy_strength > 0.0f) || !tangent_frame(hit, tangent, bitangent)) return vec3(0.0f);
   vec2 d(1.0f, 0.0f);
   strength = m.anisotropy_strength;
   if (m.anisotropy_texture.present()) {
-    const vec4 texel = lookup(m.anisotropy_texture, linear_, hit);
+    const vec4 texel = lookup(m.anisotropy_texture, linear_, hit, shared);
     d = vec2(texel) * 2.0f - 1.0f;
     strength *= texel.b;
   }
@@ -132,12 +141,18 @@ vec3 MaterialTable::anisotropy_direction(const Material& m, const SurfaceHit& hi
   return strength > 0.0f ? world / len : vec3(0.0f);
 }
 
-vec3 MaterialTable::emission(const Material& m, const SurfaceHit& hit) const {
-  return m.emissive_factor * m.emissive_strength * vec3(lookup(m.emissive_texture, srgb_, hit));
+vec3 MaterialTable::emission(const Material& m, const SurfaceHit& hit, const TexelQuad* shared) const {
+  return m.emissive_factor * m.emissive_strength * vec3(lookup(m.emissive_texture, srgb_, hit, shared));
 }
 
 ShadingPoint MaterialTable::evaluate(const SurfaceHit& hit) const {
-  if (hit.material < 0 || !constant_[hit.material]) return evaluate(material(hit.material), hit);
+  if (hit.material < 0) return evaluate(default_material_, hit);
+  if (!constant_[hit.material]) {
+    const TextureUse& shared = shared_[hit.material];
+    if (!shared.image) return evaluate(materials_[hit.material], hit);
+    const TexelQuad at = locate_texels(*shared.image, *shared.ref, hit.uv[shared.ref->texcoord]);
+    return evaluate(materials_[hit.material], hit, &at);
+  }
   // The same values as evaluate(m, hit) gives: what differs from the white, tangentless hit.
   const Material& m = materials_[hit.material];
   ShadingPoint sp = constant_point_[hit.material];
@@ -148,62 +163,73 @@ ShadingPoint MaterialTable::evaluate(const SurfaceHit& hit) const {
 
 void MaterialTable::prefetch_textures(const SurfaceHit& hit) const {
   if (hit.material < 0) return;
-  for (const TextureUse& use : texture_uses_[hit.material]) prefetch_texture(*use.image, *use.ref, hit.uv[use.ref->texcoord]);
+  const TextureUse& shared = shared_[hit.material];
+  if (shared.image) {
+    const TexelQuad at = locate_texels(*shared.image, *shared.ref, hit.uv[shared.ref->texcoord]);
+    for (const TextureUse& use : texture_uses_[hit.material]) prefetch_texels(*use.image, at);
+    return;
+  }
+  for (const TextureUse& use : texture_uses_[hit.material])
+    prefetch_texels(*use.image, locate_texels(*use.image, *use.ref, hit.uv[use.ref->texcoord]));
 }
 
 void MaterialTable::prefetch_emission(const SurfaceHit& hit) const {
   const TextureRef& ref = material(hit.material).emissive_texture;
-  if (ref.present()) prefetch_texture(srgb_[ref.image], ref, hit.uv[ref.texcoord]);
+  if (ref.present()) prefetch_texels(srgb_[ref.image], locate_texels(srgb_[ref.image], ref, hit.uv[ref.texcoord]));
 }
 
-void MaterialTable::set_base_color(const Material& m, const SurfaceHit& hit, ShadingPoint& sp) const {
-  const vec4 base = m.base_color_factor * lookup(m.base_color_texture, srgb_, hit) * hit.color;
+void MaterialTable::set_base_color(const Material& m, const SurfaceHit& hit, ShadingPoint& sp,
+                                   const TexelQuad* shared) const {
+  const vec4 base = m.base_color_factor * lookup(m.base_color_texture, srgb_, hit, shared) * hit.color;
   sp.base_color = glm::clamp(vec3(base), 0.0f, 1.0f);
   sp.alpha = glm::clamp(base.a, 0.0f, 1.0f);
 }
 
-ShadingPoint MaterialTable::evaluate(const Material& m, const SurfaceHit& hit) const {
+ShadingPoint MaterialTable::evaluate(const Material& m, const SurfaceHit& hit, const TexelQuad* shared) const {
+  auto lookup = [&](const TextureRef& ref, const std::vector<TextureImage>& images) {
+    return this->lookup(ref, images, hit, shared);
+  };
   ShadingPoint sp;
-  set_base_color(m, hit, sp);
-  sp.emission = emission(m, hit);
+  set_base_color(m, hit, sp, shared);
+  sp.emission = emission(m, hit, shared);
   sp.double_sided = m.double_sided;
   sp.unlit = m.unlit;
   if (m.unlit) return sp;
-  const vec4 mr = lookup(m.metallic_roughness_texture, linear_, hit);
+  const vec4 mr = lookup(m.metallic_roughness_texture, linear_);
   sp.metallic = glm::clamp(m.metallic_factor * mr.b, 0.0f, 1.0f);
   sp.roughness = glm::clamp(m.roughness_factor * mr.g, 0.0f, 1.0f);
   if (m.normal_texture.present() && hit.tangent != vec4(0.0f))
-    sp.normal = perturbed_normal(m.normal_texture, m.normal_scale, hit);
-  sp.transmission = glm::clamp(m.transmission_factor * lookup(m.transmission_texture, linear_, hit).r, 0.0f, 1.0f);
+    sp.normal = perturbed_normal(m.normal_texture, m.normal_scale, hit, shared);
+  sp.transmission = glm::clamp(m.transmission_factor * lookup(m.transmission_texture, linear_).r, 0.0f, 1.0f);
   sp.ior = m.ior;
-  const float thickness = m.thickness_factor * lookup(m.thickness_texture, linear_, hit).g;
+  const float thickness = m.thickness_factor * lookup(m.thickness_texture, linear_).g;
   sp.thin_walled = !(thickness > 0.0f);
   if (!sp.thin_walled && std::isfinite(m.attenuation_distance) && m.attenuation_distance > 0.0f)
     sp.absorption = -glm::log(glm::max(m.attenuation_color, vec3(1e-6f))) / m.attenuation_distance;
-  sp.specular = glm::clamp(m.specular_factor * lookup(m.specular_texture, linear_, hit).a, 0.0f, 1.0f);
-  sp.specular_color = m.specular_color_factor * vec3(lookup(m.specular_color_texture, srgb_, hit));
-  sp.clearcoat = glm::clamp(m.clearcoat_factor * lookup(m.clearcoat_texture, linear_, hit).r, 0.0f, 1.0f);
+  sp.specular = glm::clamp(m.specular_factor * lookup(m.specular_texture, linear_).a, 0.0f, 1.0f);
+  sp.specular_color = m.specular_color_factor * vec3(lookup(m.specular_color_texture, srgb_));
+  sp.clearcoat = glm::clamp(m.clearcoat_factor * lookup(m.clearcoat_texture, linear_).r, 0.0f, 1.0f);
   sp.clearcoat_roughness =
-      glm::clamp(m.clearcoat_roughness_factor * lookup(m.clearcoat_roughness_texture, linear_, hit).g, 0.0f, 1.0f);
+      glm::clamp(m.clearcoat_roughness_factor * lookup(m.clearcoat_roughness_texture, linear_).g, 0.0f, 1.0f);
   if (sp.clearcoat > 0.0f && m.clearcoat_normal_texture.present() && hit.tangent != vec4(0.0f))
-    sp.clearcoat_normal = perturbed_normal(m.clearcoat_normal_texture, m.clearcoat_normal_scale, hit);
-  sp.anisotropy_direction = anisotropy_direction(m, hit, sp.anisotropy);
+    sp.clearcoat_normal = perturbed_normal(m.clearcoat_normal_texture, m.clearcoat_normal_scale, hit, shared);
+  sp.anisotropy_direction = anisotropy_direction(m, hit, sp.anisotropy, shared);
   sp.diffuse_transmission = glm::clamp(
-      m.diffuse_transmission_factor * lookup(m.diffuse_transmission_texture, linear_, hit).a, 0.0f, 1.0f);
+      m.diffuse_transmission_factor * lookup(m.diffuse_transmission_texture, linear_).a, 0.0f, 1.0f);
   sp.diffuse_transmission_color = glm::clamp(
-      m.diffuse_transmission_color_factor * vec3(lookup(m.diffuse_transmission_color_texture, srgb_, hit)), 0.0f, 1.0f);
-  sp.iridescence = glm::clamp(m.iridescence_factor * lookup(m.iridescence_texture, linear_, hit).r, 0.0f, 1.0f);
+      m.diffuse_transmission_color_factor * vec3(lookup(m.diffuse_transmission_color_texture, srgb_)), 0.0f, 1.0f);
+  sp.iridescence = glm::clamp(m.iridescence_factor * lookup(m.iridescence_texture, linear_).r, 0.0f, 1.0f);
   if (sp.iridescence > 0.0f) {
     sp.iridescence_ior = m.iridescence_ior;
     sp.iridescence_thickness =
         m.iridescence_thickness_texture.present()
             ? glm::mix(m.iridescence_thickness_min, m.iridescence_thickness_max,
-                       lookup(m.iridescence_thickness_texture, linear_, hit).g)
+                       lookup(m.iridescence_thickness_texture, linear_).g)
             : m.iridescence_thickness_max;
   }
   sp.dispersion = sp.thin_walled ? 0.0f : m.dispersion;  // a property of the volume
-  sp.sheen_color = glm::clamp(m.sheen_color_factor * vec3(lookup(m.sheen_color_texture, srgb_, hit)), 0.0f, 1.0f);
-  sp.sheen_roughness = glm::clamp(m.sheen_roughness_factor * lookup(m.sheen_roughness_texture, linear_, hit).a, 0.0f, 1.0f);
+  sp.sheen_color = glm::clamp(m.sheen_color_factor * vec3(lookup(m.sheen_color_texture, srgb_)), 0.0f, 1.0f);
+  sp.sheen_roughness = glm::clamp(m.sheen_roughness_factor * lookup(m.sheen_roughness_texture, linear_).a, 0.0f, 1.0f);
   return sp;
 }
 

@@ -61,13 +61,18 @@ class MaterialTable {
   float opacity(int material, const vec2 uv[2], const vec4& color) const;
 
  private:
-  vec3 emission(const Material& m, const SurfaceHit& hit) const;
-  vec4 lookup(const TextureRef& ref, const std::vector<TextureImage>& images, const SurfaceHit& hit) const;
-  vec3 perturbed_normal(const TextureRef& map, float scale, const SurfaceHit& hit) const;
-  vec3 anisotropy_direction(const Material& m, const SurfaceHit& hit, float& strength) const;
+  // `shared`, where not null: where every texture of the material is read at this hit
+  // (see shared_).
+  vec3 emission(const Material& m, const SurfaceHit& hit, const TexelQuad* shared = nullptr) const;
+  vec4 lookup(const TextureRef& ref, const std::vector<TextureImage>& images, const SurfaceHit& hit,
+              const TexelQuad* shared) const;
+  vec3 perturbed_normal(const TextureRef& map, float scale, const SurfaceHit& hit, const TexelQuad* shared) const;
+  vec3 anisotropy_direction(const Material& m, const SurfaceHit& hit, float& strength,
+                            const TexelQuad* shared = nullptr) const;
 
-  ShadingPoint evaluate(const Material& m, const SurfaceHit& hit) const;
-  void set_base_color(const Material& m, const SurfaceHit& hit, ShadingPoint& sp) const;  // and alpha
+  ShadingPoint evaluate(const Material& m, const SurfaceHit& hit, const TexelQuad* shared = nullptr) const;
+  void set_base_color(const Material& m, const SurfaceHit& hit, ShadingPoint& sp,
+                      const TexelQuad* shared = nullptr) const;  // and alpha
 
   std::vector<Material> materials_;
   Material default_material_;  // the glTF default: white, metallic 1, roughness 1
@@ -85,6 +90,10 @@ class MaterialTable {
     const TextureRef* ref;
   };
   std::vector<std::vector<TextureUse>> texture_uses_;
+  // By material: one of its textures where all of them sample alike (same_sampling: the usual
+  // material, one UV set and sampler, maps of one size), so a hit finds its texels' places
+  // once, not once per map (DamagedHelmet: four maps); image null where they differ or none.
+  std::vector<TextureUse> shared_;
   bool prefetches_ = false;
   std::vector<TextureImage> srgb_, linear_;  // by image index; empty where unused
 };
