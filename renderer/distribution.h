@@ -1,5 +1,6 @@
-// Sampling in proportion to a tabulated non-negative function: discrete choices (lights by
-// power) and piecewise-constant densities (rows and columns of an environment image).
+// Sampling in proportion to a tabulated non-negative function by inverting its cdf: the
+// piecewise-constant densities of an environment image's rows and columns, where u
+// falls inside the bin matters (a discrete choice alone, lights by power: alias_table.h).
 #pragma once
 
 #include <algorithm>
@@ -42,8 +43,8 @@ class Distribution1D {
   }
 
  private:
-  // Bins per guide entry: a 46,000-triangle emitter (DamagedHelmet) was a 16-step binary
-  // search of cache misses per light sample; the guide narrows it to about this many bins.
+  // Bins per guide entry: the guide narrows a binary search over a large cdf (each step a
+  // cache miss) to about this many bins.
   static constexpr std::size_t kBinsPerGuide = 8;
 
   // guide_[k]: the first bin whose cdf exceeds k / guide_.size().

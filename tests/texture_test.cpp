@@ -92,9 +92,9 @@ TEST(Texture, LookupsEqualTheSamplerRulesOnRowMajorPixels) {
 }
 
 // Lookups one after another at the same point, of textures that differ in one thing each
-// (size, a wrap mode, the filter, the transform): each follows its own rules, though a
-// thread remembers where the last lookup read (texture.cpp, locate()).
-TEST(Texture, ConsecutiveLookupsThatDifferInOneSettingEachFollowTheirOwn) {
+// (size, a wrap mode, the filter, the transform): each follows its own rules, and
+// same_sampling, by which a material's maps share their texels' places, tells them apart.
+TEST(Texture, LookupsThatDifferInOneSettingEachFollowTheirOwn) {
   const Image wide = ramp_image(5, 3, 8), tall = ramp_image(3, 5, 8);
   const TextureImage wide_tex = make_texture_image(wide, ColorEncoding::Linear);
   const TextureImage tall_tex = make_texture_image(tall, ColorEncoding::Linear);
@@ -105,6 +105,16 @@ TEST(Texture, ConsecutiveLookupsThatDifferInOneSettingEachFollowTheirOwn) {
   mirror_t.wrap_t = WrapMode::MirroredRepeat;
   nearest.filter = FilterMode::Nearest;
   shifted.transform.offset = vec2(0.3f, 0.0f);  // rotation 0, scale 1: uv + offset exactly
+  TextureRef other_image = plain, second_set = plain;
+  other_image.image = 1;  // another image of the same size samples alike
+  second_set.texcoord = 1;
+  EXPECT_TRUE(same_sampling(wide_tex, plain, wide_tex, plain));
+  EXPECT_TRUE(same_sampling(wide_tex, plain, wide_tex, other_image));
+  EXPECT_FALSE(same_sampling(wide_tex, plain, tall_tex, plain));
+  for (const TextureRef* r : {&clamp_s, &mirror_t, &nearest, &shifted, &second_set}) {
+    EXPECT_FALSE(same_sampling(wide_tex, plain, wide_tex, *r));
+    EXPECT_FALSE(same_sampling(wide_tex, *r, wide_tex, plain));
+  }
   for (const vec2 uv : {vec2(-0.37f, 1.71f), vec2(0.52f, 0.48f), vec2(2.9f, -1.2f)}) {
     for (int round = 0; round < 2; ++round) {
       const struct {

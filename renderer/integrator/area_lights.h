@@ -9,7 +9,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "renderer/distribution.h"
+#include "renderer/alias_table.h"
 #include "renderer/integrator/materials.h"
 #include "renderer/scene_geometry.h"
 
@@ -81,7 +81,7 @@ class AreaLights {
   const SceneGeometry& geometry_;
   const MaterialTable& materials_;
   std::vector<Triangle> triangles_;
-  Distribution1D by_power_;
+  AliasTable by_power_;
   std::unordered_map<std::uint64_t, std::uint32_t> first_;  // list_key -> its first triangle
 };
 
