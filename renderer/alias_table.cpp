@@ -7,8 +7,10 @@ namespace tessera {
 AliasTable::AliasTable(const std::vector<double>& weights) {
   double total = 0.0;
   for (double w : weights) total += std::isfinite(w) && w > 0.0 ? w : 0.0;
-  if (!(total > 0.0) || !std::isfinite(total)) return;
   const std::size_t n = weights.size();
+  if (!(total > 0.0) || !std::isfinite(total)) return;
+  columns_ = static_cast<float>(n);
+  below_end_ = std::nextafter(columns_, 0.0f);
   // Each item's weight in columns of height 1: under 1 it needs an alias to fill its column,
   // over 1 it gives to others'. Lists in index order, so the table is the same on every run.
   std::vector<double> scaled(n);

@@ -19,14 +19,15 @@ class AliasTable {
   std::size_t size() const { return entries_.size(); }
 
   // u in [0, 1) picks column floor(u n) and, by where u falls inside it, the column's own
-  // item or its alias. Never an item of weight 0; u outside [0, 1) is clamped.
+  // item or its alias. Never an item of weight 0; u outside [0, 1) is clamped. A float u
+  // tells 2^24 columns apart, as a float cdf would: past that, some columns are never drawn.
   std::size_t sample(float u) const {
-    float x = u * static_cast<float>(entries_.size());
-    if (!(x > 0.0f)) x = 0.0f;  // below 0, or NaN; past the end, the last column's alias
-    const std::size_t last = entries_.size() - 1;
-    const std::size_t i = x < static_cast<float>(last) ? static_cast<std::size_t>(x) : last;
-    const Entry& e = entries_[i];
-    return x - static_cast<float>(i) < e.keep ? i : e.alias;
+    float x = u * columns_;
+    x = x > 0.0f ? x : 0.0f;  // below 0, or NaN
+    x = x < below_end_ ? x : below_end_;
+    const int i = static_cast<int>(x);  // a table of 2^31 lights would not fit in memory
+    const Entry& e = entries_[static_cast<std::size_t>(i)];
+    return x - static_cast<float>(i) < e.keep ? static_cast<std::size_t>(i) : e.alias;
   }
 
   // The probability sample() gives each item over u uniform in [0, 1), from the table itself:
@@ -39,6 +40,9 @@ class AliasTable {
     std::uint32_t alias;
   };
   std::vector<Entry> entries_;
+  // The column count and the largest float below it, as floats: the draw stays in float and
+  // int (conversions to and from size_t cost a branch each).
+  float columns_ = 0.0f, below_end_ = 0.0f;
 };
 
 }  // namespace tessera
