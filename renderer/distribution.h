@@ -51,6 +51,7 @@ class Distribution1D {
   void build_guide() {
     if (cdf_.size() < 8 * kBinsPerGuide || !(total_ > 0.0)) return;
     guide_.resize(cdf_.size() / kBinsPerGuide);
+    guide_count_ = static_cast<float>(guide_.size());
     for (std::size_t k = 0; k < guide_.size(); ++k) {
       const float t = static_cast<float>(static_cast<double>(k) / guide_.size());
       guide_[k] = static_cast<std::uint32_t>(std::upper_bound(cdf_.begin(), cdf_.end(), t) - cdf_.begin());
@@ -63,8 +64,10 @@ class Distribution1D {
   std::size_t first_above(float u) const {
     std::size_t lo = 0, hi = cdf_.size();
     if (!guide_.empty()) {
-      const float x = u * static_cast<float>(guide_.size());
-      const std::size_t k = x > 0.0f ? (x < guide_.size() ? static_cast<std::size_t>(x) : guide_.size() - 1) : 0;
+      // In float and int: conversions to and from size_t cost a branch each.
+      const float x = u * guide_count_;
+      const int last = static_cast<int>(guide_.size()) - 1;
+      const std::size_t k = static_cast<std::size_t>(x > 0.0f ? (x < guide_count_ ? static_cast<int>(x) : last) : 0);
       lo = guide_[k];
       hi = k + 1 < guide_.size() ? std::min<std::size_t>(guide_[k + 1] + 1, cdf_.size()) : cdf_.size();
       if ((lo > 0 && !(cdf_[lo - 1] <= u)) || (hi < cdf_.size() && !(cdf_[hi - 1] > u))) lo = 0, hi = cdf_.size();
@@ -83,6 +86,7 @@ class Distribution1D {
 
   std::vector<float> pmf_, cdf_;
   std::vector<std::uint32_t> guide_;
+  float guide_count_ = 0.0f;  // guide_.size()
   double total_ = 0.0;
 };
 
