@@ -29,6 +29,7 @@ CameraSampler::CameraSampler(const RenderScene& scene, const RenderCamera& camer
     coverage_ = CameraCoverage(camera, *scene.geometry, cp);
   }
   uniform_background_ = !scene.environment.has_image();
+  in_step_ = scene.geometry->unique_triangles() >= kInStepFrom;
   PathCounters once;
   background_ = camera_ray_escaped(scene, params_, Ray{vec3(0.0f), vec3(0.0f, 0.0f, -1.0f)}, once);  // any ray, when uniform
   background_dropped_ = once.dropped > 0;
@@ -64,6 +65,29 @@ void CameraSampler::camera_sample_point(int fx, int fy, const vec2& u, Sampler& 
 float CameraSampler::depth(const Ray& ray, float distance) const {
   const vec3 axis = camera_moves_ ? -vec3(camera_.camera_to_world_at(ray.time)[2]) : forward_;
   return distance * glm::dot(ray.direction, axis);
+}
+
+// The group's samples whose camera rays hit something, their paths traced in step.
+void CameraSampler::trace_hits_in_step(int n, const int* lane, const Ray* rays, const ClosestHit* hits,
+                                       Sampler* const* samplers, PathCounters& counters, CameraSampleResult* out) const {
+  Ray traced[kGroup];
+  ClosestHit known[kGroup];
+  Sampler* rngs[kGroup] = {};
+  FirstHit firsts[kGroup];
+  vec3 radiance[kGroup];
+  int which[kGroup], m = 0;
+  for (int k = 0; k < n; ++k) {
+    if (lane[k] < 0 || !hits[lane[k]].found) continue;
+    traced[m] = rays[lane[k]];
+    known[m] = hits[lane[k]];
+    rngs[m] = samplers[k];
+    which[m++] = k;
+  }
+  trace_paths_from(scene_, params_, m, traced, known, rngs, firsts, counters, radiance);
+  for (int j = 0; j < m; ++j) {
+    out[which[j]].radiance = radiance[j];
+    out[which[j]].first = firsts[j];
+  }
 }
 
 void CameraSampler::sample(int fx, int fy, int s0, int n, PathCounters& counters, CameraSampleResult* out,
@@ -108,13 +132,16 @@ void CameraSampler::sample(int fx, int fy, int s0, int n, PathCounters& counters
         const HitRecord& h = hits[l].hit;
         scene_.materials.prefetch_textures(scene_.geometry->texture_corners(h).at(h.u, h.v));
       }
+  if (!records && in_step_) trace_hits_in_step(n, lane, rays, hits, samplers, counters, out);
   for (int k = 0; k < n; ++k) {
     if (lane[k] < 0) continue;
     const Ray& ray = rays[lane[k]];
     CameraSampleResult& r = out[k];
     PathRecord* record = records ? records[k] : nullptr;
-    if (hits[lane[k]].found || record) {
+    if (record) {
       r.radiance = trace_path_from(scene_, params_, ray, &hits[lane[k]], *rng[k], r.first, counters, record);
+    } else if (hits[lane[k]].found) {
+      if (!in_step_) r.radiance = trace_path_from(scene_, params_, ray, &hits[lane[k]], *rng[k], r.first, counters);
     } else if (traced) {
       r.radiance = camera_ray_escaped(scene_, params_, ray, counters);
     } else {

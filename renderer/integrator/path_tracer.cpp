@@ -170,13 +170,19 @@ vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ra
   return trace_path_from(scene, params, ray, nullptr, rng, first, counters, record);
 }
 
-vec3 trace_path_from(const RenderScene& scene, const PathTracerParams& params, Ray ray, const ClosestHit* known,
-                     Sampler& rng, FirstHit& first, PathCounters& counters, PathRecord* record) {
-  vec3 radiance(0.0f), throughput(1.0f);
+namespace {
+
+// What a path carries from one vertex to the next (trace_path_from's loop, or a group of
+// paths traced in step).
+struct PathState {
+  void start(const Ray& r, bool known) { *this = PathState{}, ray = r, time = r.time, prefetched = known; }
+  Ray ray;
+  float time = 0.0f;  // every ray of the path looks at the scene at the camera ray's time
+  vec3 radiance{0.0f}, throughput{1.0f};
   // The refractions' radiance scaling (1 / eta^2 entering glass) undone, for Russian roulette
   // alone (pbrt-v4's etaScale): a path inside glass has lost no energy, only scale.
   float eta_scale = 1.0f;
-  vec3 absorption(0.0f);  // of the volume the ray travels in (Beer-Lambert); 0 = none
+  vec3 absorption{0.0f};  // of the volume the ray travels in (Beer-Lambert); 0 = none
   float bsdf_pdf = 0.0f;  // solid-angle pdf of the direction that led here; 0 = camera ray
   // Straight passes through thin surfaces since the last scattering: they do not count as
   // bounces, and the light a pass reaches is weighed against light sampling from that
@@ -186,19 +192,31 @@ vec3 trace_path_from(const RenderScene& scene, const PathTracerParams& params, R
   // The wavelength (nm) this path carries since its first dispersive surface; 0 = none yet
   // (spectrum.h: the throughput then holds the wavelength's RGB weight).
   float wavelength = 0.0f;
+  bool features_pending = true;  // the features still look through smooth vertices
+  vec3 feature_weight{1.0f};  // the smooth bounces' throughput since the first hit
+  int bounce = 0;
+  HitRecord hit;  // of `ray`, once traced
+  bool prefetched = false;  // the hit's textures were prefetched with others' (a packet, a group)
+};
+
+// The path's vertex at st.hit (`found`: st.ray hit something): what it adds to st.radiance,
+// and st.ray made the next ray; false when the path ends there.
+[[gnu::always_inline]] inline bool path_vertex(const RenderScene& scene, const PathTracerParams& params, PathState& st, bool found, Sampler& rng,
+                 FirstHit& first, PathCounters& counters, PathRecord* record) {
+  Ray& ray = st.ray;
+  HitRecord& hit = st.hit;
+  vec3 &radiance = st.radiance, &throughput = st.throughput, &absorption = st.absorption, &feature_weight = st.feature_weight;
+  float &eta_scale = st.eta_scale, &bsdf_pdf = st.bsdf_pdf, &passed = st.passed, &wavelength = st.wavelength;
+  int &passes = st.passes, &bounce = st.bounce;
+  bool& features_pending = st.features_pending;
+  const float time = st.time;
   const LightSampling mode = params.light_sampling;
   const bool light_sampling = !scene.area_lights->empty() && mode != LightSampling::BsdfOnly;
   const bool environment_sampling = scene.environment.has_image() && mode != LightSampling::BsdfOnly;
-  bool features_pending = true;  // the features still look through smooth vertices
-  vec3 feature_weight(1.0f);  // the smooth bounces' throughput since the first hit
-  int bounce = 0;
-  HitRecord hit;
   auto record_features = [&](const ShadingPoint& sp, const SurfaceHit& s) {
     if (bounce == 0 && passes == 0) first = {true, sp.base_color, s.ns, hit.t};
     else if (features_pending) first.albedo = feature_weight * sp.base_color, first.normal = s.ns;
   };
-  // Every ray of the path looks at the scene at the camera ray's time.
-  const float time = ray.time;
   // On along the same line past the surface just hit, as if it were absent; false at the bound.
   auto pass_straight = [&](const vec3& origin) {
     if (++passes > kMaxPasses) return false;
@@ -206,143 +224,186 @@ vec3 trace_path_from(const RenderScene& scene, const PathTracerParams& params, R
     ray = Ray{origin, ray.direction, 0.0f, std::numeric_limits<float>::infinity(), time};
     return true;
   };
-  bool prefetched = known != nullptr;  // a camera packet's textures are prefetched together
+  if (absorption != vec3(0.0f)) throughput *= found ? glm::exp(-absorption * hit.t) : vec3(0.0f);
+  if (!found) {
+    const float weight = bsdf_pdf > 0.0f && environment_sampling
+                             ? strategy_weight(mode, false, bsdf_pdf, scene.environment.pdf(ray.direction))
+                             : 1.0f;
+    const bool camera_miss = bounce == 0 && passes == 0;
+    if (!(camera_miss && params.transparent_background)) {
+      radiance += throughput * scene.environment.radiance(ray.direction) * weight;
+      if (record) record->escaped = throughput * scene.environment.radiance(ray.direction) * weight;
+    }
+    if (record) record->end = "left the scene";
+    if (features_pending && (bounce > 0 || passes > 0)) first.albedo = feature_weight * scene.environment.radiance(ray.direction);
+    return false;
+  }
+  SurfaceHit s = scene.geometry->surface(ray, hit);
+  if (!st.prefetched) scene.materials.prefetch_textures(s);
+  st.prefetched = false;
+  // The emitter light sampling will use: its three numbers come next in the sequence unless
+  // this vertex draws a wavelength first, so then it is chosen here, and its record arrives
+  // while the material is evaluated; otherwise after the wavelength. A path that ends before
+  // light sampling leaves the numbers unused, and draws nothing after them.
+  const bool last = bounce >= params.max_bounces;
+  vec3 u_light(0.0f);
+  AreaLights::Choice light;
+  bool light_chosen = false;
+  auto choose_light = [&] {
+    u_light = rng.next3();
+    light = scene.area_lights->choose(u_light.z);
+    light_chosen = true;
+  };
+  if (light_sampling && !last && !(wavelength == 0.0f && scene.materials.material(s.material).dispersion > 0.0f))
+    choose_light();
+  ShadingPoint sp = scene.materials.evaluate(s);
+  PathVertex* vertex = nullptr;
+  if (record) {
+    vertex = &record->vertices.emplace_back();
+    vertex->position = s.p, vertex->normal = s.ns, vertex->material = s.material, vertex->throughput = throughput;
+  }
+  if ((glm::dot(s.ng, ray.direction) < 0.0f || sp.double_sided) && sp.emission != vec3(0.0f)) {
+    // Light sampling could have found this point too: weigh the two strategies.
+    SurfaceHit from_vertex = s;
+    from_vertex.t += passed;
+    const float weight =
+        bsdf_pdf > 0.0f && light_sampling
+            ? strategy_weight(mode, false, bsdf_pdf, scene.area_lights->pdf(hit, from_vertex, ray.direction))
+            : 1.0f;
+    radiance += throughput * sp.emission * weight;
+    if (vertex) vertex->emitted = throughput * sp.emission * weight;
+  }
+  if (sp.unlit) {  // KHR_materials_unlit: the colour is what the surface shows
+    radiance += throughput * sp.base_color;
+    record_features(sp, s);
+    if (vertex) vertex->emitted += throughput * sp.base_color, record->end = "unlit surface";
+    return false;
+  }
+  const bool front = orient(s, sp, ray.direction);
+  if (vertex) vertex->normal = s.ns;
+  record_features(sp, s);
+  features_pending = features_pending && features_look_through(sp);
+  if (last && !(sp.thin_walled && sp.transmission > 0.0f)) {
+    if (record) record->end = "max bounces";
+    return false;
+  }
+
+  if (sp.dispersion > 0.0f && sp.transmission > 0.0f) {  // KHR_materials_dispersion
+    if (wavelength == 0.0f) {
+      const WavelengthSample w = sample_wavelength(rng.next());
+      wavelength = w.lambda;
+      throughput *= w.weight;
+    }
+    sp.ior = dispersive_ior(sp.ior, sp.dispersion, wavelength);
+  }
+  if (light_sampling && !last && !light_chosen) choose_light();
+  const Frame frame = Frame::from_normal(s.ns);
+  const vec3 wo_local = frame.to_local(-ray.direction);
+  const float eta = front ? sp.ior : 1.0f / sp.ior;
+  const GltfBsdf bsdf(sp, wo_local, eta, frame);
+  const ShadingContext ctx{s, frame, bsdf, wo_local, time};
+  if (last) {  // no scattering left, but the straight pass is none: it goes on, weighted
+    throughput *= bsdf.straight_transmittance();
+    if (vertex) vertex->lobe = "straight pass";
+    if (features_pending) feature_weight *= bsdf.straight_transmittance();
+    if (throughput == vec3(0.0f) || !pass_straight(ctx.origin_towards(ray.direction))) return false;
+    return true;
+  }
+  vec3 direct(0.0f);  // what light sampling adds, summed for the record only
+  auto add_direct = [&](const vec3& light) {
+    const vec3 added = throughput * light;
+    radiance += added;
+    direct += added;
+  };
+  if (!scene.description.lights.empty()) add_direct(punctual_light_contribution(scene, ctx, counters));
+  if (light_sampling) add_direct(area_light_contribution(scene, ctx, u_light, light, mode, counters));
+  if (environment_sampling) add_direct(environment_contribution(scene, ctx, rng, mode, counters));
+  if (vertex) vertex->direct = direct;
+
+  BsdfSample bs;
+  const vec3 u = rng.next3();  // the direction (x, y) and the lobe (z), stratified together
+  if (!bsdf.sample(wo_local, u.z, {u.x, u.y}, bs)) {
+    if (record) record->end = "no direction sampled";
+    return false;
+  }
+  if (vertex) vertex->lobe = bs.passthrough ? "straight pass" : GltfBsdf::lobe_name(bs.lobe), vertex->pdf = bs.pdf;
+  throughput *= bs.f * (std::fabs(bs.wi.z) / bs.pdf);
+  if (features_pending) feature_weight *= bs.f * (std::fabs(bs.wi.z) / bs.pdf);
+  if (bs.passthrough) {
+    if (!pass_straight(ctx.origin_towards(ray.direction))) return false;
+    return true;
+  }
+  const vec3 wi = frame.to_world(bs.wi);
+  if ((glm::dot(wi, s.ng) > 0.0f) == bs.transmitted) {  // shading and geometry disagree
+    if (record) record->end = "direction below the surface";
+    return false;
+  }
+  bsdf_pdf = bs.pdf;
+  passed = 0.0f;
+  if (bs.transmitted && !sp.thin_walled) absorption = front ? sp.absorption : vec3(0.0f);
+  if (bs.transmitted && bs.lobe == GltfBsdf::kTransmission) eta_scale *= sqr(eta);
+  if (++bounce >= params.roulette_start) {
+    // The square root (as Cycles takes) ends paths later than the throughput itself would:
+    // on a bright background the light a path still gathers is not small when its
+    // throughput is (docs/performance.md, "Russian roulette").
+    const float survive = fmin_inline(1.0f, std::sqrt(max_component(throughput) * eta_scale));
+    if (rng.next() >= survive) {
+      if (record) record->end = "Russian roulette";
+      return false;
+    }
+    throughput /= survive;
+  }
+  ray = Ray{ctx.origin_towards(wi), wi, 0.0f, std::numeric_limits<float>::infinity(), time};
+  return true;
+}
+
+}  // namespace
+
+vec3 trace_path_from(const RenderScene& scene, const PathTracerParams& params, Ray ray, const ClosestHit* known,
+                     Sampler& rng, FirstHit& first, PathCounters& counters, PathRecord* record) {
+  PathState st;
+  st.start(ray, known != nullptr);  // a camera packet's textures are prefetched together
   for (;;) {
     ++counters.rays;
-    const bool found = known ? (hit = known->hit, known->found) : scene.geometry->intersect(ray, hit);
+    const bool found = known ? (st.hit = known->hit, known->found) : scene.geometry->intersect(st.ray, st.hit);
     known = nullptr;  // the first ray's only
-    if (absorption != vec3(0.0f)) throughput *= found ? glm::exp(-absorption * hit.t) : vec3(0.0f);
-    if (!found) {
-      const float weight = bsdf_pdf > 0.0f && environment_sampling
-                               ? strategy_weight(mode, false, bsdf_pdf, scene.environment.pdf(ray.direction))
-                               : 1.0f;
-      const bool camera_miss = bounce == 0 && passes == 0;
-      if (!(camera_miss && params.transparent_background)) {
-        radiance += throughput * scene.environment.radiance(ray.direction) * weight;
-        if (record) record->escaped = throughput * scene.environment.radiance(ray.direction) * weight;
-      }
-      if (record) record->end = "left the scene";
-      if (features_pending && (bounce > 0 || passes > 0)) first.albedo = feature_weight * scene.environment.radiance(ray.direction);
-      break;
-    }
-    SurfaceHit s = scene.geometry->surface(ray, hit);
-    if (!prefetched) scene.materials.prefetch_textures(s);
-    prefetched = false;
-    // The emitter light sampling will use: its three numbers come next in the sequence unless
-    // this vertex draws a wavelength first, so then it is chosen here, and its record arrives
-    // while the material is evaluated; otherwise after the wavelength. A path that ends before
-    // light sampling leaves the numbers unused, and draws nothing after them.
-    const bool last = bounce >= params.max_bounces;
-    vec3 u_light(0.0f);
-    AreaLights::Choice light;
-    bool light_chosen = false;
-    auto choose_light = [&] {
-      u_light = rng.next3();
-      light = scene.area_lights->choose(u_light.z);
-      light_chosen = true;
-    };
-    if (light_sampling && !last && !(wavelength == 0.0f && scene.materials.material(s.material).dispersion > 0.0f))
-      choose_light();
-    ShadingPoint sp = scene.materials.evaluate(s);
-    PathVertex* vertex = nullptr;
-    if (record) {
-      vertex = &record->vertices.emplace_back();
-      vertex->position = s.p, vertex->normal = s.ns, vertex->material = s.material, vertex->throughput = throughput;
-    }
-    if ((glm::dot(s.ng, ray.direction) < 0.0f || sp.double_sided) && sp.emission != vec3(0.0f)) {
-      // Light sampling could have found this point too: weigh the two strategies.
-      SurfaceHit from_vertex = s;
-      from_vertex.t += passed;
-      const float weight =
-          bsdf_pdf > 0.0f && light_sampling
-              ? strategy_weight(mode, false, bsdf_pdf, scene.area_lights->pdf(hit, from_vertex, ray.direction))
-              : 1.0f;
-      radiance += throughput * sp.emission * weight;
-      if (vertex) vertex->emitted = throughput * sp.emission * weight;
-    }
-    if (sp.unlit) {  // KHR_materials_unlit: the colour is what the surface shows
-      radiance += throughput * sp.base_color;
-      record_features(sp, s);
-      if (vertex) vertex->emitted += throughput * sp.base_color, record->end = "unlit surface";
-      break;
-    }
-    const bool front = orient(s, sp, ray.direction);
-    if (vertex) vertex->normal = s.ns;
-    record_features(sp, s);
-    features_pending = features_pending && features_look_through(sp);
-    if (last && !(sp.thin_walled && sp.transmission > 0.0f)) {
-      if (record) record->end = "max bounces";
-      break;
-    }
-
-    if (sp.dispersion > 0.0f && sp.transmission > 0.0f) {  // KHR_materials_dispersion
-      if (wavelength == 0.0f) {
-        const WavelengthSample w = sample_wavelength(rng.next());
-        wavelength = w.lambda;
-        throughput *= w.weight;
-      }
-      sp.ior = dispersive_ior(sp.ior, sp.dispersion, wavelength);
-    }
-    if (light_sampling && !last && !light_chosen) choose_light();
-    const Frame frame = Frame::from_normal(s.ns);
-    const vec3 wo_local = frame.to_local(-ray.direction);
-    const float eta = front ? sp.ior : 1.0f / sp.ior;
-    const GltfBsdf bsdf(sp, wo_local, eta, frame);
-    const ShadingContext ctx{s, frame, bsdf, wo_local, time};
-    if (last) {  // no scattering left, but the straight pass is none: it goes on, weighted
-      throughput *= bsdf.straight_transmittance();
-      if (vertex) vertex->lobe = "straight pass";
-      if (features_pending) feature_weight *= bsdf.straight_transmittance();
-      if (throughput == vec3(0.0f) || !pass_straight(ctx.origin_towards(ray.direction))) break;
-      continue;
-    }
-    vec3 direct(0.0f);  // what light sampling adds, summed for the record only
-    auto add_direct = [&](const vec3& light) {
-      const vec3 added = throughput * light;
-      radiance += added;
-      direct += added;
-    };
-    if (!scene.description.lights.empty()) add_direct(punctual_light_contribution(scene, ctx, counters));
-    if (light_sampling) add_direct(area_light_contribution(scene, ctx, u_light, light, mode, counters));
-    if (environment_sampling) add_direct(environment_contribution(scene, ctx, rng, mode, counters));
-    if (vertex) vertex->direct = direct;
-
-    BsdfSample bs;
-    const vec3 u = rng.next3();  // the direction (x, y) and the lobe (z), stratified together
-    if (!bsdf.sample(wo_local, u.z, {u.x, u.y}, bs)) {
-      if (record) record->end = "no direction sampled";
-      break;
-    }
-    if (vertex) vertex->lobe = bs.passthrough ? "straight pass" : GltfBsdf::lobe_name(bs.lobe), vertex->pdf = bs.pdf;
-    throughput *= bs.f * (std::fabs(bs.wi.z) / bs.pdf);
-    if (features_pending) feature_weight *= bs.f * (std::fabs(bs.wi.z) / bs.pdf);
-    if (bs.passthrough) {
-      if (!pass_straight(ctx.origin_towards(ray.direction))) break;
-      continue;
-    }
-    const vec3 wi = frame.to_world(bs.wi);
-    if ((glm::dot(wi, s.ng) > 0.0f) == bs.transmitted) {  // shading and geometry disagree
-      if (record) record->end = "direction below the surface";
-      break;
-    }
-    bsdf_pdf = bs.pdf;
-    passed = 0.0f;
-    if (bs.transmitted && !sp.thin_walled) absorption = front ? sp.absorption : vec3(0.0f);
-    if (bs.transmitted && bs.lobe == GltfBsdf::kTransmission) eta_scale *= sqr(eta);
-    if (++bounce >= params.roulette_start) {
-      // The square root (as Cycles takes) ends paths later than the throughput itself would:
-      // on a bright background the light a path still gathers is not small when its
-      // throughput is (docs/performance.md, "Russian roulette").
-      const float survive = fmin_inline(1.0f, std::sqrt(max_component(throughput) * eta_scale));
-      if (rng.next() >= survive) {
-        if (record) record->end = "Russian roulette";
-        break;
-      }
-      throughput /= survive;
-    }
-    ray = Ray{ctx.origin_towards(wi), wi, 0.0f, std::numeric_limits<float>::infinity(), time};
+    if (!path_vertex(scene, params, st, found, rng, first, counters, record)) break;
   }
-  return finished_sample(radiance, params, counters);
+  return finished_sample(st.radiance, params, counters);
+}
+
+void trace_paths_from(const RenderScene& scene, const PathTracerParams& params, int n, const Ray* rays,
+                      const ClosestHit* known, Sampler* const* rngs, FirstHit* firsts, PathCounters& counters,
+                      vec3* radiance) {
+  constexpr int kMost = SceneGeometry::kPacketSize;
+  PathState states[kMost];
+  bool found[kMost];
+  int active[kMost], count = 0;
+  for (int k = 0; k < n && k < kMost; ++k) {
+    states[k].start(rays[k], true);  // the caller prefetched the first hits' textures
+    states[k].hit = known[k].hit;
+    found[k] = known[k].found;
+    ++counters.rays;
+    active[count++] = k;
+  }
+  const SceneGeometry& geometry = *scene.geometry;
+  while (count > 0) {
+    int still = 0;
+    for (int a = 0; a < count; ++a) {
+      const int k = active[a];
+      if (path_vertex(scene, params, states[k], found[k], *rngs[k], firsts[k], counters, nullptr)) active[still++] = k;
+      else radiance[k] = finished_sample(states[k].radiance, params, counters);
+    }
+    count = still;
+    for (int a = 0; a < count; ++a) {
+      PathState& st = states[active[a]];
+      ++counters.rays;
+      found[active[a]] = geometry.intersect(st.ray, st.hit);
+      if (found[active[a]]) geometry.prefetch_triangle(st.hit);
+    }
+    for (int a = 0; a < count; ++a)
+      if (found[active[a]]) geometry.prefetch_corners(states[active[a]].hit);
+  }
 }
 
 vec3 camera_ray_escaped(const RenderScene& scene, const PathTracerParams& params, const Ray& ray,

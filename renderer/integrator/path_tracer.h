@@ -65,6 +65,15 @@ vec3 trace_path(const RenderScene& scene, const PathTracerParams& params, Ray ra
 // SceneGeometry::intersect gives it: camera rays traced as a packet); null: not known.
 vec3 trace_path_from(const RenderScene& scene, const PathTracerParams& params, Ray ray, const ClosestHit* known,
                      Sampler& rng, FirstHit& first, PathCounters& counters, PathRecord* record = nullptr);
+// The paths of n camera rays whose closest hits are known (a pixel's sample group, n at most
+// SceneGeometry::kPacketSize), traced in step: radiance[k] and firsts[k] are what
+// trace_path_from gives ray k with rngs[k], bit for bit (the caller has prefetched the first
+// hits' textures). Each bounce's rays are all traced and their hits' triangles and corners
+// prefetched before any is shaded, so that one path's cache misses overlap the others', where
+// a lone path waits for each in turn: on a mesh far larger than the caches.
+void trace_paths_from(const RenderScene& scene, const PathTracerParams& params, int n, const Ray* rays,
+                      const ClosestHit* known, Sampler* const* rngs, FirstHit* firsts, PathCounters& counters,
+                      vec3* radiance);
 // What trace_path_from returns, bit for bit, for a camera ray known to hit nothing, without
 // the set-up of a path: most camera rays of a small object against the sky end so.
 vec3 camera_ray_escaped(const RenderScene& scene, const PathTracerParams& params, const Ray& ray,
