@@ -8,21 +8,10 @@
 #include <random>
 
 #include "renderer/alias_table.h"
+#include "tests/uneven_weights.h"
 
 namespace tessera {
 namespace {
-
-std::vector<double> uneven_weights(std::size_t n, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> uniform(0.0, 1.0);
-  std::vector<double> w(n);
-  for (double& x : w) {
-    const double r = uniform(rng);
-    // A quarter empty (dark emitters), a few very heavy ones (the helmet's glow).
-    x = r < 0.25 ? 0.0 : r > 0.98 ? 1e4 * r : r;
-  }
-  return w;
-}
 
 double sum(const std::vector<double>& w) {
   double total = 0.0;
@@ -32,7 +21,7 @@ double sum(const std::vector<double>& w) {
 
 TEST(AliasTable, ItsProbabilitiesAreTheWeightsShares) {
   for (std::size_t n : {1u, 2u, 7u, 1000u, 46000u}) {
-    const std::vector<double> w = uneven_weights(n, static_cast<unsigned>(n) + 1);
+    const std::vector<double> w = test::uneven_weights(n, static_cast<unsigned>(n) + 1);
     const double total = sum(w);
     const std::vector<double> p = AliasTable(w).probabilities();
     ASSERT_EQ(p.size(), total > 0.0 ? n : 0);  // n = 1 draws weight 0: an empty table
@@ -43,7 +32,7 @@ TEST(AliasTable, ItsProbabilitiesAreTheWeightsShares) {
 }
 
 TEST(AliasTable, DrawsFollowTheWeights) {
-  const std::vector<double> w = uneven_weights(4096, 3);
+  const std::vector<double> w = test::uneven_weights(4096, 3);
   const double total = sum(w);
   const AliasTable table(w);
   std::vector<double> hits(w.size(), 0.0);

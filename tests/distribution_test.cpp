@@ -9,6 +9,7 @@
 #include <random>
 
 #include "renderer/distribution.h"
+#include "tests/uneven_weights.h"
 
 namespace tessera {
 namespace {
@@ -25,21 +26,9 @@ std::size_t by_definition(const std::vector<double>& w, float u) {
   return std::min(i, cdf.size() - 1);
 }
 
-std::vector<double> uneven_weights(std::size_t n, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> uniform(0.0, 1.0);
-  std::vector<double> w(n);
-  for (double& x : w) {
-    const double r = uniform(rng);
-    // A quarter empty bins (dark emitters), a few very heavy ones (the helmet's glow).
-    x = r < 0.25 ? 0.0 : r > 0.98 ? 1e4 * r : r;
-  }
-  return w;
-}
-
 TEST(Distribution1D, GuidedSearchFindsTheSameBinAsABinarySearch) {
   for (std::size_t n : {1u, 7u, 64u, 65u, 1000u, 46000u}) {
-    const std::vector<double> w = uneven_weights(n, static_cast<unsigned>(n));
+    const std::vector<double> w = test::uneven_weights(n, static_cast<unsigned>(n));
     const Distribution1D d(w);
     std::vector<float> us = {0.0f, 1.0f, -0.5f, 2.0f, 0.99999994f, std::numeric_limits<float>::infinity(),
                              std::numeric_limits<float>::quiet_NaN()};
@@ -58,7 +47,7 @@ TEST(Distribution1D, GuidedSearchFindsTheSameBinAsABinarySearch) {
 }
 
 TEST(Distribution1D, ChoosesBinsInProportionToTheirWeights) {
-  const std::vector<double> w = uneven_weights(4096, 3);
+  const std::vector<double> w = test::uneven_weights(4096, 3);
   const Distribution1D d(w);
   std::vector<int> hits(w.size(), 0);
   const int n = 1 << 20;
