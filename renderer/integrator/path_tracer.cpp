@@ -201,7 +201,7 @@ struct PathState {
 
 // The path's vertex at st.hit (`found`: st.ray hit something): what it adds to st.radiance,
 // and st.ray made the next ray; false when the path ends there.
-[[gnu::always_inline]] inline bool path_vertex(const RenderScene& scene, const PathTracerParams& params, PathState& st, bool found, Sampler& rng,
+bool path_vertex(const RenderScene& scene, const PathTracerParams& params, PathState& st, bool found, Sampler& rng,
                  FirstHit& first, PathCounters& counters, PathRecord* record) {
   Ray& ray = st.ray;
   HitRecord& hit = st.hit;
@@ -306,8 +306,7 @@ struct PathState {
     throughput *= bsdf.straight_transmittance();
     if (vertex) vertex->lobe = "straight pass";
     if (features_pending) feature_weight *= bsdf.straight_transmittance();
-    if (throughput == vec3(0.0f) || !pass_straight(ctx.origin_towards(ray.direction))) return false;
-    return true;
+    return throughput != vec3(0.0f) && pass_straight(ctx.origin_towards(ray.direction));
   }
   vec3 direct(0.0f);  // what light sampling adds, summed for the record only
   auto add_direct = [&](const vec3& light) {
@@ -330,8 +329,7 @@ struct PathState {
   throughput *= bs.f * (std::fabs(bs.wi.z) / bs.pdf);
   if (features_pending) feature_weight *= bs.f * (std::fabs(bs.wi.z) / bs.pdf);
   if (bs.passthrough) {
-    if (!pass_straight(ctx.origin_towards(ray.direction))) return false;
-    return true;
+    return pass_straight(ctx.origin_towards(ray.direction));
   }
   const vec3 wi = frame.to_world(bs.wi);
   if ((glm::dot(wi, s.ng) > 0.0f) == bs.transmitted) {  // shading and geometry disagree
