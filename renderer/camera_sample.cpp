@@ -132,16 +132,17 @@ void CameraSampler::sample(int fx, int fy, int s0, int n, PathCounters& counters
         const HitRecord& h = hits[l].hit;
         scene_.materials.prefetch_textures(scene_.geometry->texture_corners(h).at(h.u, h.v));
       }
-  if (!records && in_step_) trace_hits_in_step(n, lane, rays, hits, samplers, counters, out);
+  const bool in_step = in_step_ && !records;  // a recorded path is traced alone
+  if (in_step) trace_hits_in_step(n, lane, rays, hits, samplers, counters, out);
   for (int k = 0; k < n; ++k) {
     if (lane[k] < 0) continue;
     const Ray& ray = rays[lane[k]];
     CameraSampleResult& r = out[k];
     PathRecord* record = records ? records[k] : nullptr;
-    if (record) {
+    if (hits[lane[k]].found && in_step) {
+      // traced above
+    } else if (hits[lane[k]].found || record) {
       r.radiance = trace_path_from(scene_, params_, ray, &hits[lane[k]], *rng[k], r.first, counters, record);
-    } else if (hits[lane[k]].found) {
-      if (!in_step_) r.radiance = trace_path_from(scene_, params_, ray, &hits[lane[k]], *rng[k], r.first, counters);
     } else if (traced) {
       r.radiance = camera_ray_escaped(scene_, params_, ray, counters);
     } else {
