@@ -15,8 +15,10 @@ AliasTable::AliasTable(const std::vector<double>& weights) {
   // over 1 it gives to others'. Lists in index order, so the table is the same on every run.
   std::vector<double> scaled(n);
   std::vector<std::uint32_t> small, large;
+  pmf_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const double w = std::isfinite(weights[i]) && weights[i] > 0.0 ? weights[i] : 0.0;
+    pmf_[i] = static_cast<float>(w / total);
     scaled[i] = w / total * static_cast<double>(n);
     (scaled[i] < 1.0 ? small : large).push_back(static_cast<std::uint32_t>(i));
   }

@@ -17,6 +17,7 @@ class AliasTable {
 
   bool empty() const { return entries_.empty(); }
   std::size_t size() const { return entries_.size(); }
+  float pmf(std::size_t i) const { return pmf_[i]; }  // weight i / the weights' sum
 
   // u in [0, 1) picks column floor(u n) and, by where u falls inside it, the column's own
   // item or its alias. Never an item of weight 0; u outside [0, 1) is clamped. A float u
@@ -40,6 +41,7 @@ class AliasTable {
     std::uint32_t alias;
   };
   std::vector<Entry> entries_;
+  std::vector<float> pmf_;  // apart from the entries: sample() reads those alone
   // The column count and the largest float below it, as floats: the draw stays in float and
   // int (conversions to and from size_t cost a branch each).
   float columns_ = 0.0f, below_end_ = 0.0f;

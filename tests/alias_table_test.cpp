@@ -23,11 +23,14 @@ TEST(AliasTable, ItsProbabilitiesAreTheWeightsShares) {
   for (std::size_t n : {1u, 2u, 7u, 1000u, 46000u}) {
     const std::vector<double> w = test::uneven_weights(n, static_cast<unsigned>(n) + 1);
     const double total = sum(w);
-    const std::vector<double> p = AliasTable(w).probabilities();
+    const AliasTable table(w);
+    const std::vector<double> p = table.probabilities();
     ASSERT_EQ(p.size(), total > 0.0 ? n : 0);  // n = 1 draws weight 0: an empty table
     if (p.empty()) continue;
-    for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t i = 0; i < n; ++i) {
       ASSERT_NEAR(p[i], w[i] / total, 1e-7 * (w[i] / total) + 1e-12) << "n " << n << ", item " << i;
+      ASSERT_EQ(table.pmf(i), static_cast<float>(w[i] / total)) << "n " << n << ", item " << i;
+    }
   }
 }
 

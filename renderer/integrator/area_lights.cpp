@@ -87,14 +87,11 @@ AreaLights::AreaLights(const SceneDescription& scene, const SceneGeometry& geome
     power[i] *= textured_luminance(materials, *m, triangles_[i].texturing);
   });
   by_power_ = AliasTable(power);
-  double total = 0.0;
-  for (double w : power) total += std::isfinite(w) && w > 0.0 ? w : 0.0;
-  for (std::size_t i = 0; i < triangles_.size(); ++i)
-    triangles_[i].pmf = std::isfinite(power[i]) && power[i] > 0.0 ? static_cast<float>(power[i] / total) : 0.0f;
   if (by_power_.empty()) {
     triangles_.clear();
     first_.clear();
   }
+  for (std::size_t i = 0; i < triangles_.size(); ++i) triangles_[i].pmf = by_power_.pmf(i);
 }
 
 AreaLights::Shape AreaLights::shape_at(const HitRecord& where, float side) const {
