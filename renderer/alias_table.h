@@ -16,7 +16,6 @@ class AliasTable {
   explicit AliasTable(const std::vector<double>& weights);
 
   bool empty() const { return entries_.empty(); }
-  std::size_t size() const { return entries_.size(); }
   float pmf(std::size_t i) const { return pmf_[i]; }  // weight i / the weights' sum
 
   // u in [0, 1) picks column floor(u n) and, by where u falls inside it, the column's own
