@@ -32,12 +32,12 @@ double error_slope(SamplerKind sampler) {
   std::vector<double> log_n, log_e;
   for (int spp = 16; spp <= 1024; spp *= 4) {
     RenderSettings s;
-    s.width = s.height = 7;  // a 0.1 degree field: the irradiance is flat to 1e-5 over it
+    s.width = s.height = 7;  // a 0.01 degree field: the irradiance is flat to 1e-5 over it
     s.spp = spp;
     s.max_bounces = 1;
     s.sampler = sampler;
     const FrameImage img =
-        render_frame(rs, make_camera(test::look_at({0, 0.5f, 3}, {0, 0, 0}, 0.1f), s.width, s.height, {}), s).image;
+        render_frame(rs, make_camera(test::look_at({0, 0.5f, 3}, {0, 0, 0}, 0.01f), s.width, s.height, {}), s).image;
     double sq = 0.0;
     for (std::size_t i = 0; i < img.rgb.size(); i += 3) sq += std::pow(img.rgb[i] - expected, 2);
     log_n.push_back(std::log(double(spp)));
@@ -53,7 +53,7 @@ double error_slope(SamplerKind sampler) {
 TEST(RenderSampler, SobolErrorFallsFasterThanIndependentUnderAnAreaLight) {
   const double independent = error_slope(SamplerKind::independent), sobol = error_slope(SamplerKind::sobol);
   EXPECT_NEAR(independent, -0.5, 0.15);
-  EXPECT_LT(sobol, -0.65) << "independent: " << independent;  // measured: -0.73
+  EXPECT_LT(sobol, -0.8) << "independent: " << independent;  // measured: -0.92
 }
 
 }  // namespace
