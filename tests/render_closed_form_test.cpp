@@ -192,18 +192,18 @@ TEST(RenderClosedForm, SingleSidedEmitterIsDarkFromBehind) {
 }
 
 // A diffuse floor under a square emitter against the parallel-rectangle form factor
-// (test::floor_under_square_emitter). One bounce, black background: direct light only, found by
-// light sampling and BSDF sampling together (MIS).
-TEST(RenderClosedForm, FloorUnderASquareEmitterMatchesTheFormFactor) {
+// (test::floor_under_square_emitter), the whole scene `lift` above the origin. One bounce,
+// black background: direct light only, found by light sampling and BSDF sampling together (MIS).
+void expect_floor_under_square_emitter(float lift) {
   const float a = 0.25f, h = 1.0f, le = 4.0f, albedo = 0.5f;
   SceneDescription scene;
-  add_mesh(scene, test::make_quad({0, 0, 0}, {5, 0, 0}, {0, 0, -5}, add_material(scene, test::diffuse(vec3(albedo)))));
-  add_mesh(scene, test::make_quad({0, h, 0}, {a, 0, 0}, {0, 0, a}, add_material(scene, test::emitter(vec3(le)))));
+  add_mesh(scene, test::make_quad({0, lift, 0}, {5, 0, 0}, {0, 0, -5}, add_material(scene, test::diffuse(vec3(albedo)))));
+  add_mesh(scene, test::make_quad({0, lift + h, 0}, {a, 0, 0}, {0, 0, a}, add_material(scene, test::emitter(vec3(le)))));
   RenderSettings s;
   s.width = s.height = 5;  // the centre pixel looks at the origin through a 0.01 degree field
   s.spp = 4096;
   s.max_bounces = 1;
-  const RenderResult r = render(scene, test::look_at({0, 0.5f, 3}, {0, 0, 0}, 0.01f), s, vec3(0));
+  const RenderResult r = render(scene, test::look_at({0, lift + 0.5f, 3}, {0, lift, 0}, 0.01f), s, vec3(0));
   const double expected = test::floor_under_square_emitter(a, h, le, albedo);
   // The floor is seen at 9.5 degrees, so the footprint is 6x longer than wide: over 0.1 degree
   // (+-16 mm along) the irradiance fell by 1.5e-4 on average, at 0.01 degree by ~1e-6.
@@ -211,6 +211,18 @@ TEST(RenderClosedForm, FloorUnderASquareEmitterMatchesTheFormFactor) {
   const double stderr_pixel = std::sqrt(st.variance + 1e-12);  // spread between pixels = per-pixel noise
   EXPECT_NEAR(st.mean, expected, 4.0 * stderr_pixel / std::sqrt(25.0) + 1e-4 * expected);
   EXPECT_LT(stderr_pixel, 0.02 * expected);
+}
+
+TEST(RenderClosedForm, FloorUnderASquareEmitterMatchesTheFormFactor) { expect_floor_under_square_emitter(0.0f); }
+
+// The same 100 units up, where a ray origin's offset off its surface (256 ulps of each
+// coordinate: 2e-3 there) exceeds the shadow ray's tolerance before the light (1e-4 of the
+// distance): a shadow ray aimed from the moved origin along the unmoved direction met the
+// emitter's own plane early and was stopped by it, and the floor lost its light-sampled part
+// (it rendered 0.0008 for 0.147). The offset itself still moves the BSDF-sampled rays' origins
+// 2 mm towards the light: 6e-5 too bright here, within the 1e-4 allowed.
+TEST(RenderClosedForm, FloorUnderASquareEmitterFarFromTheOriginMatchesTheFormFactor) {
+  expect_floor_under_square_emitter(100.0f);
 }
 
 // KHR_materials_diffuse_transmission: a sheet with no specular layer (pure Lambert), base

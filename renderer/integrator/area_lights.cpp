@@ -126,6 +126,7 @@ bool AreaLights::sample(const vec3& p, float time, const Choice& light, const ve
   const float su = std::sqrt(u_point.x);
   const float b1 = 1.0f - su, b2 = u_point.y * su;
   s.p = sh.p0 + b1 * sh.e1 + b2 * sh.e2;
+  s.normal = sh.normal;
   const vec3 d = s.p - p;
   const float dist2 = glm::dot(d, d);
   if (!(dist2 > 0.0f)) return false;

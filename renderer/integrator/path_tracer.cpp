@@ -68,6 +68,18 @@ struct ShadingContext {
 
   // Ray origin for leaving towards wi: offset to the side of the surface wi goes to.
   vec3 origin_towards(const vec3& wi) const { return offset_ray_origin(s.p, glm::dot(wi, s.ng) >= 0.0f ? s.ng : -s.ng); }
+  // What reaches this point along wi from a point on a surface of normal `normal` through
+  // `on` (a light's). The ray leaves from the moved origin along wi, so it meets that surface's
+  // plane (offset * cos between the normals / cos at the far end) before the sampled point:
+  // it stops short of where it meets the plane, not of the sampled point's distance. The offset
+  // grows with the coordinates, and far from the scene's origin (at y = 100: 2e-3) it exceeds
+  // any tolerance relative to the distance: the ray was stopped by the light itself.
+  vec3 visibility_to(const RenderScene& scene, const vec3& wi, const vec3& on, const vec3& normal) const {
+    const vec3 from = origin_towards(wi);
+    const float to_plane = glm::dot(normal, on - from) / glm::dot(normal, wi);
+    if (!(to_plane > 0.0f)) return vec3(1.0f);  // the origin moved past the plane: nothing lies between
+    return visibility(scene, from, wi, to_plane * (1.0f - 1e-4f), time);
+  }
   // A light direction the BSDF can scatter into, with its |cosine| in the shading frame.
   bool usable(const vec3& wi, vec3& wi_local) const {
     const bool above = glm::dot(wi, s.ng) > 0.0f;
@@ -111,7 +123,7 @@ vec3 area_light_contribution(const RenderScene& scene, const ShadingContext& c, 
   const vec3 radiance = scene.area_lights->radiance(light, ls);  // its texels fetched during eval
   if (radiance == vec3(0.0f)) return vec3(0.0f);
   ++counters.rays;
-  const vec3 through = visibility(scene, c.origin_towards(ls.wi), ls.wi, ls.distance * (1.0f - 1e-4f), c.time);
+  const vec3 through = c.visibility_to(scene, ls.wi, ls.p, ls.normal);
   if (through == vec3(0.0f)) return vec3(0.0f);
   const float weight = strategy_weight(mode, true, ls.pdf, bsdf_pdf);
   return through * f * radiance * (std::fabs(wi_local.z) * weight / ls.pdf);
