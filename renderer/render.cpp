@@ -259,6 +259,9 @@ RenderResult render_frame(const RenderScene& scene, const RenderCamera& camera,
   }
   film.set_dropped(settings.ranks ? cluster_dropped : dropped.load());
   stats.seconds = seconds_since(start);
+  // Read with the clock: the sums after it (rays, the profile) wait for the slowest rank,
+  // which would count as this rank's communication beyond the frame's time.
+  const double communication = settings.ranks ? settings.ranks->communication_seconds() - communication_before : 0.0;
   stats.camera_samples = settings.ranks ? cluster_samples : samples.load();
   stats.rays = settings.ranks ? settings.ranks->sum(mon.rays) : mon.rays.load();
   stats.dropped_samples = film.state().dropped;
@@ -269,8 +272,7 @@ RenderResult render_frame(const RenderScene& scene, const RenderCamera& camera,
   result.stats = stats;
   result.profile = recorder.finish();
   if (settings.ranks)
-    result.profile = gather_profile(*settings.ranks, std::move(result.profile),
-                                    settings.ranks->communication_seconds() - communication_before);
+    result.profile = gather_profile(*settings.ranks, std::move(result.profile), communication);
   result.stats.efficiency = result.profile.balance.efficiency;
   result.stats.imbalance = result.profile.balance.imbalance;
   result.image = film.resolve();
