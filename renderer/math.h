@@ -54,9 +54,14 @@ struct Frame {
 // Moves a ray origin off a surface along the geometric normal by a few ulps of the
 // coordinates, so the new ray cannot hit the surface it leaves whatever the scale
 // (Waechter and Binder, "A Fast and Robust Method for Avoiding Self-Intersection",
-// Ray Tracing Gems, 2019).
-inline vec3 offset_ray_origin(const vec3& p, const vec3& n) {
-  constexpr float kOrigin = 1.0f / 32.0f, kFloatScale = 1.0f / 65536.0f, kIntScale = 256.0f;
+// Ray Tracing Gems, 2019). Near zero, where a coordinate's ulps are smaller than the error of
+// a point computed from larger ones, they move it by a fixed share of `extent` (the largest
+// coordinate of the triangle the point lies on) instead: 1/65536 of it, at most 1/65536, as
+// theirs does at the scale of 1; a fixed 1/65536 would be 15% of the height of a light
+// 1e-4 above a floor at 1e-4 scale.
+inline vec3 offset_ray_origin(const vec3& p, const vec3& n, float extent = 1.0f) {
+  constexpr float kIntScale = 256.0f;
+  const float near = fmin_inline(1.0f, extent), origin = near * (1.0f / 32.0f), float_scale = near * (1.0f / 65536.0f);
   vec3 out;
   for (int i = 0; i < 3; ++i) {
     const int of = static_cast<int>(kIntScale * n[i]);
@@ -65,7 +70,7 @@ inline vec3 offset_ray_origin(const vec3& p, const vec3& n) {
     bits += p[i] < 0 ? -of : of;
     float moved;
     std::memcpy(&moved, &bits, sizeof moved);
-    out[i] = std::fabs(p[i]) < kOrigin ? p[i] + kFloatScale * n[i] : moved;
+    out[i] = std::fabs(p[i]) < origin ? p[i] + float_scale * n[i] : moved;
   }
   return out;
 }

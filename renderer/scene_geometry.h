@@ -46,6 +46,7 @@ struct SurfaceHit {
   vec4 color{1.0f};
   int material = -1;
   float t = 0.0f;
+  float extent = 1.0f;  // the triangle's largest |world coordinate|: the scale of p's rounding error
 };
 
 // A triangle's texture coordinates at its corners and its material: what its material's

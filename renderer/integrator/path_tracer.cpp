@@ -67,7 +67,9 @@ struct ShadingContext {
   float time;  // the path's: lights and occluders are where they are then
 
   // Ray origin for leaving towards wi: offset to the side of the surface wi goes to.
-  vec3 origin_towards(const vec3& wi) const { return offset_ray_origin(s.p, glm::dot(wi, s.ng) >= 0.0f ? s.ng : -s.ng); }
+  vec3 origin_towards(const vec3& wi) const {
+    return offset_ray_origin(s.p, glm::dot(wi, s.ng) >= 0.0f ? s.ng : -s.ng, s.extent);
+  }
   // What reaches this point along wi from a point on a surface of normal `normal` through
   // `on` (a light's). The ray leaves from the moved origin along wi, so it meets that surface's
   // plane (offset * cos between the normals / cos at the far end) before the sampled point:
