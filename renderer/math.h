@@ -54,11 +54,11 @@ struct Frame {
 // Moves a ray origin off a surface along the geometric normal by a few ulps of the
 // coordinates, so the new ray cannot hit the surface it leaves whatever the scale
 // (Waechter and Binder, "A Fast and Robust Method for Avoiding Self-Intersection",
-// Ray Tracing Gems, 2019). Near zero, where a coordinate's ulps are smaller than the error of
-// a point computed from larger ones, they move it by a fixed share of `extent` (the largest
-// coordinate of the triangle the point lies on) instead: 1/65536 of it, at most 1/65536, as
-// theirs does at the scale of 1; a fixed 1/65536 would be 15% of the height of a light
-// 1e-4 above a floor at 1e-4 scale.
+// Ray Tracing Gems, 2019). Near zero, where a coordinate's own steps are smaller than the
+// error of a point computed from larger ones, the point moves by a fixed amount instead:
+// theirs is 1/65536; here it is 1/65536 of `extent` (the largest coordinate of the triangle
+// the point lies on), at most 1/65536, since a fixed 1/65536 would be 15% of the height of a
+// light 1e-4 above a floor at 1e-4 scale.
 inline vec3 offset_ray_origin(const vec3& p, const vec3& n, float extent = 1.0f) {
   constexpr float kIntScale = 256.0f;
   const float near = fmin_inline(1.0f, extent), origin = near * (1.0f / 32.0f), float_scale = near * (1.0f / 65536.0f);
@@ -74,6 +74,10 @@ inline vec3 offset_ray_origin(const vec3& p, const vec3& n, float extent = 1.0f)
   }
   return out;
 }
+
+// How far offset_ray_origin moves a point whose coordinates reach `magnitude` (1 or more):
+// 256 of a float's steps there.
+inline float ray_offset_at(float magnitude) { return 256.0f * (std::nextafter(magnitude, INFINITY) - magnitude); }
 
 // Uniform point on the unit disk, concentric mapping (Shirley and Chiu 1997).
 inline vec2 sample_concentric_disk(const vec2& u) {

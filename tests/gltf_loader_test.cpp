@@ -442,6 +442,22 @@ TEST(GltfLoader, NonFinitePositionsAreRejected) {
   }
 }
 
+// A unit triangle 100 units up is resolved to 2e-3 of its size; 10,000 up, rays would leave
+// it 0.25 off (256 float steps of 9.8e-4): a warning naming the distance and the offset.
+TEST(GltfLoader, ASceneFarFromTheOriginForItsSizeIsWarnedAbout) {
+  auto placed_at = [](const char* y) {
+    const std::vector<std::uint8_t> tri = triangle_gltf({0, 0, 0, 1, 0, 0, 0, 1, 0});
+    std::string json(tri.begin(), tri.end());
+    json.replace(json.find(R"([{"mesh":0}])"), 12, std::string(R"([{"mesh":0,"translation":[0,)") + y + ",0]}]");
+    return load_gltf_from_memory({json.begin(), json.end()}, "far.gltf", ".").warnings;
+  };
+  EXPECT_EQ(placed_at("100"), std::vector<std::string>{});
+  EXPECT_EQ(placed_at("10000"), std::vector<std::string>{
+                                    "the scene reaches 10001 from the origin, 10001 times its size: rays leave its "
+                                    "surfaces 0.25 off (25.0% of its size), which biases its lighting; move it "
+                                    "nearer the origin"});
+}
+
 TEST(GltfLoader, DeepHierarchyIsWalkedWithoutRecursion) {
   // 200000 nodes in a chain, each translated by 0.5 in y; the last places the mesh. A
   // recursive walk would overflow the stack; the leaf lands exactly at y = 100000.

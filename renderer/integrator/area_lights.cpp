@@ -130,8 +130,7 @@ bool AreaLights::sample(const vec3& p, float time, const Choice& light, const ve
   const vec3 d = s.p - p;
   const float dist2 = glm::dot(d, d);
   if (!(dist2 > 0.0f)) return false;
-  s.distance = std::sqrt(dist2);
-  s.wi = d / s.distance;
+  s.wi = d / std::sqrt(dist2);
   const float cos_light = -glm::dot(sh.normal, s.wi);
   if (!(cos_light > 0.0f || tri.double_sided)) return false;  // the back of a one-sided emitter
   const float abs_cos = std::fabs(cos_light);

@@ -19,7 +19,6 @@ struct AreaLightSample {
   vec3 p{0.0f};  // point on the light
   vec3 normal{0.0f};  // the light's unit geometric normal there (either side)
   vec3 wi{0.0f};  // unit direction from the shading point to p
-  float distance = 0.0f;
   vec2 at{0.0f};  // the point's weights of the triangle's second and third corner
   float pdf = 0.0f;  // solid angle, at the shading point
 };
