@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "renderer/render.h"
+#include "tests/pixel_stats.h"
 #include "tests/scene_builders.h"
 
 namespace tessera {
@@ -20,19 +21,8 @@ RenderResult render(SceneDescription scene, const Camera& cam, RenderSettings s,
   return render_frame(rs, make_camera(cam, s.width, s.height, lens), s);
 }
 
-struct PixelStats {
-  double mean = 0.0, variance = 0.0;  // over pixels, of the red channel
-};
-
-PixelStats stats_of(const FrameImage& img, int channel = 0) {
-  const std::size_t n = img.rgb.size() / 3;
-  PixelStats st;
-  for (std::size_t i = 0; i < n; ++i) st.mean += img.rgb[3 * i + channel];
-  st.mean /= n;
-  for (std::size_t i = 0; i < n; ++i) st.variance += std::pow(img.rgb[3 * i + channel] - st.mean, 2);
-  st.variance /= (n - 1);
-  return st;
-}
+using test::PixelStats;
+using test::stats_of;
 
 // White furnace: a diffuse sphere of albedo 1 under a uniform environment of radiance 1.
 // Every path sees the environment with throughput exactly 1 (cosine-weighted sampling of
