@@ -59,12 +59,12 @@ struct Frame {
 // theirs is 1/65536; here it is 1/65536 of `extent` (the largest coordinate of the triangle
 // the point lies on), at most 1/65536, since a fixed 1/65536 would be 15% of the height of a
 // light 1e-4 above a floor at 1e-4 scale.
+constexpr int kRayOffsetSteps = 256;  // a float's steps a ray origin moves away from zero
 inline vec3 offset_ray_origin(const vec3& p, const vec3& n, float extent = 1.0f) {
-  constexpr float kIntScale = 256.0f;
   const float near = fmin_inline(1.0f, extent), origin = near * (1.0f / 32.0f), float_scale = near * (1.0f / 65536.0f);
   vec3 out;
   for (int i = 0; i < 3; ++i) {
-    const int of = static_cast<int>(kIntScale * n[i]);
+    const int of = static_cast<int>(float(kRayOffsetSteps) * n[i]);
     std::int32_t bits;
     std::memcpy(&bits, &p[i], sizeof bits);
     bits += p[i] < 0 ? -of : of;
@@ -75,9 +75,10 @@ inline vec3 offset_ray_origin(const vec3& p, const vec3& n, float extent = 1.0f)
   return out;
 }
 
-// How far offset_ray_origin moves a point whose coordinates reach `magnitude` (1 or more):
-// 256 of a float's steps there.
-inline float ray_offset_at(float magnitude) { return 256.0f * (std::nextafter(magnitude, INFINITY) - magnitude); }
+// How far offset_ray_origin moves a point whose coordinates reach `magnitude` (1 or more).
+inline float ray_offset_at(float magnitude) {
+  return float(kRayOffsetSteps) * (std::nextafter(magnitude, INFINITY) - magnitude);
+}
 
 // Uniform point on the unit disk, concentric mapping (Shirley and Chiu 1997).
 inline vec2 sample_concentric_disk(const vec2& u) {
