@@ -15,11 +15,16 @@
 namespace tessera {
 namespace {
 
-// A bounce direction: cosine-distributed about the normal, on the side the ray came from.
-vec3 diffuse_bounce(vec3 normal, const vec3& incoming, const vec2& u) {
+// The next ray of a diffuse path: cosine-distributed about the geometric normal, on the side
+// the ray came from, leaving from the hit moved off the surface as the renderer's rays leave
+// (offset_ray_origin, with the point's own largest coordinate standing in for its triangle's).
+Ray diffuse_bounce(const Ray& ray, float t, vec3 normal, const vec2& u) {
+  const vec3 p = ray.origin + t * ray.direction;
   normal = glm::normalize(normal);
-  if (glm::dot(normal, incoming) > 0.0f) normal = -normal;
-  return Frame::from_normal(normal).to_world(sample_cosine_hemisphere(u));
+  if (glm::dot(normal, ray.direction) > 0.0f) normal = -normal;
+  const vec3 wi = Frame::from_normal(normal).to_world(sample_cosine_hemisphere(u));
+  const vec3 size = glm::abs(p);
+  return Ray{offset_ray_origin(p, normal, fmax_inline(size.x, fmax_inline(size.y, size.z))), wi};
 }
 
 std::uint64_t trace_pixel(const RenderScene& scene, const RenderCamera& camera, const TraversalCeilingParams& p, int x,
@@ -34,9 +39,7 @@ std::uint64_t trace_pixel(const RenderScene& scene, const RenderCamera& camera, 
       vec3 ng;
       ++rays;
       if (!scene.geometry->intersect(ray, hit, &ng) || !(glm::dot(ng, ng) > 0.0f)) break;
-      const vec3 p_hit = ray.origin + hit.t * ray.direction;
-      const vec3 wi = diffuse_bounce(ng, ray.direction, rng.next2());
-      ray = Ray{p_hit, wi, 1e-4f * (1.0f + glm::length(p_hit)), std::numeric_limits<float>::infinity(), 0.0f};
+      ray = diffuse_bounce(ray, hit.t, ng, rng.next2());
     }
   }
   return rays;

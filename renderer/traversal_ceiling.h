@@ -2,7 +2,10 @@
 // (issue "Close to the ceiling"). The same camera and image as a render, but paths of pure
 // diffuse bounces (cosine-distributed about the geometric normal) with no shading, no light
 // sampling, no shadow rays and no film: only closest-hit traversal through the scene's own
-// Embree BVH (its alpha filters included) and the few instructions between two rays.
+// Embree BVH (its alpha filters included) and the few instructions between two rays. Each
+// bounce leaves its surface as the renderer's rays do (offset_ray_origin): a ray that starts
+// closer to a surface visits more of the BVH's boxes around its origin, and a minimum
+// distance instead would skip geometry the renderer must find.
 // Camera rays that a render would not trace either (renderer/camera_coverage.h: pixels whose
 // rays provably miss everything) are skipped here too, so both trace the same kind of rays.
 #pragma once
