@@ -464,11 +464,12 @@ TEST(MicrofacetAlbedo, TablesMatchUniformSphereIntegration) {
 // mu (the azimuth is uniform), for smooth, medium and rough rows.
 TEST(MicrofacetAlbedo, MultiscatterSamplingMatchesItsPdf) {
   for (float roughness : {0.1f, 0.5f, 1.0f}) {
+    const MultiScatterShape shape(roughness);
     const int bins = 64, n = 200000;
     std::vector<double> observed(bins, 0.0);
     for (int i = 0; i < n; ++i) {
       Sampler rng(SamplerKind::independent, i, 5, 0, 3);
-      const float mu = multiscatter_sample_mu(roughness, rng.next());
+      const float mu = shape.sample_mu(rng.next());
       ASSERT_GE(mu, 0.0f);
       ASSERT_LE(mu, 1.0f);
       observed[std::min(bins - 1, static_cast<int>(mu * bins))] += 1.0;
@@ -477,7 +478,7 @@ TEST(MicrofacetAlbedo, MultiscatterSamplingMatchesItsPdf) {
     int dof = -1;
     for (int b = 0; b < bins; ++b) {
       double p = 0.0;  // the pdf's integral over the bin, by a fine midpoint rule
-      for (int k = 0; k < 100; ++k) p += multiscatter_pdf_mu(roughness, (b + (k + 0.5f) / 100) / bins) / (100.0 * bins);
+      for (int k = 0; k < 100; ++k) p += shape.pdf_mu((b + (k + 0.5f) / 100) / bins) / (100.0 * bins);
       const double expected = p * n;
       if (expected < 5.0) continue;
       chi2 += std::pow(observed[b] - expected, 2) / expected;

@@ -151,6 +151,7 @@ void GltfBsdf::compensate(const vec3& wo) {
     const vec3 f_avg = metal_f0_ + (vec3(1.0f) - metal_f0_) / 21.0f;
     const vec3 f_ms = f_avg * f_avg * e_avg_metal / (vec3(1.0f) - f_avg * (1.0f - e_avg_metal));
     multiscatter_color_ = f_ms / (kPi * (1.0f - e_avg_metal));
+    multiscatter_shape_ = MultiScatterShape(roughness_);
   }
   if (clearcoat_ > 0.0f) {
     const float mu_coat = coat_tilted_ ? coat_frame_.to_local(wo).z : mu;
@@ -163,22 +164,9 @@ void GltfBsdf::compensate(const vec3& wo) {
   }
 }
 
-vec3 GltfBsdf::base_reflectance(float mu) const {
-  if (refracts_) {
-    const InterfaceAlbedo a = dielectric_albedo(mu, roughness_, eta_);
-    return with_film(vec3(a.reflect / fmax_inline(a.reflect + a.transmit, 1e-3f)), mu);
-  }
-  return with_film(vec3(specular_ * (f0_max_ + (1.0f - f0_max_) * base_albedo_.schlick_share(mu))), mu);
-}
-
-// KHR_materials_iridescence. The film's Fresnel is not Schlick-shaped, so the albedo tables
-// cannot hold its microfacet average. It is evaluated once per shading point, toward wo, and
-// carried by the Schlick curve through that value (film_f0_, metal_film_f0_; real-time
-// viewers evaluate it at N.V alike): exact for a mirror-like surface, whose half vector is
-// the normal, an approximation of the colour where a rough lobe's half vectors spread; the
-// layering then holds exactly, and a shading point costs one film evaluation per base.
-vec3 GltfBsdf::with_film(const vec3& e, float mu) const {
-  return iridescence_ > 0.0f ? glm::mix(e, film_scale() * film_reflectance(mu), iridescence_) : e;
+vec3 GltfBsdf::refracting_reflectance(float mu) const {
+  const InterfaceAlbedo a = dielectric_albedo(mu, roughness_, eta_);
+  return with_film(vec3(a.reflect / fmax_inline(a.reflect + a.transmit, 1e-3f)), mu);
 }
 
 // The film layer's e(mu): its Schlick curve's microfacet average, from the tables.
@@ -302,11 +290,12 @@ const char* GltfBsdf::lobe_name(int lobe) {
   return lobe >= 0 && lobe < kLobeCount ? kNames[lobe] : "none";
 }
 
-float GltfBsdf::lobe_pdf(int lobe, const vec3& wo, const vec3& wi, const HalfVector& m) const {
+// Inlined into pdf()'s loop, unrolled there: each lobe's case then stands alone.
+[[gnu::always_inline]] inline float GltfBsdf::lobe_pdf(int lobe, const vec3& wo, const vec3& wi, const HalfVector& m) const {
   switch (lobe) {
     case kDiffuse:
     case kSheen: return wi.z > 0.0f ? wi.z * kInvPi : 0.0f;
-    case kMultiScatter: return wi.z > 0.0f ? multiscatter_pdf_mu(roughness_, wi.z) * (0.5f * kInvPi) : 0.0f;
+    case kMultiScatter: return wi.z > 0.0f ? multiscatter_shape_.pdf_mu(wi.z) * (0.5f * kInvPi) : 0.0f;
     case kDiffuseTransmission: return wi.z < 0.0f ? -wi.z * kInvPi : 0.0f;
     case kClearcoat: return coat_pdf(wo, wi);
     case kSpecular:
@@ -330,6 +319,7 @@ float GltfBsdf::pdf(const vec3& wo, const vec3& wi) const { return pdf(wo, wi, h
 float GltfBsdf::pdf(const vec3& wo, const vec3& wi, const HalfVector& m) const {
   if (wo.z <= 0.0f || wi.z == 0.0f) return 0.0f;
   float p = 0.0f;
+#pragma GCC unroll 8
   for (int i = 0; i < kLobeCount; ++i)
     if (weight_[i] > 0.0f) p += weight_[i] * lobe_pdf(i, wo, wi, m);
   return p;
@@ -347,7 +337,7 @@ bool GltfBsdf::sample(const vec3& wo, float u_lobe, const vec2& u, BsdfSample& s
     case kDiffuseTransmission: s.wi = -sample_cosine_hemisphere(u); break;
     case kSpecular: s.wi = reflect(wo, ggx_.sample_visible(wo, u)); break;
     case kMultiScatter: {
-      const float mu = multiscatter_sample_mu(roughness_, u.x), r = std::sqrt(fmax_inline(0.0f, 1.0f - mu * mu));
+      const float mu = multiscatter_shape_.sample_mu(u.x), r = std::sqrt(fmax_inline(0.0f, 1.0f - mu * mu));
       const float phi = 2.0f * kPi * u.y;
       s.wi = {r * std::cos(phi), r * std::sin(phi), mu};
       break;

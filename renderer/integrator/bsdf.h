@@ -99,8 +99,20 @@ class GltfBsdf {
   vec3 refracting_fresnel(float cos_oh) const;  // exact, with the film mixed in
   vec3 metal_fresnel(float cos_oh) const { return fresnel_schlick(metal_f0_, vec3(1.0f), cos_oh); }
   float coat_fresnel(float cos_o) const;
-  vec3 base_reflectance(float mu) const;  // e(mu): the compensated interface's reflectance
-  vec3 with_film(const vec3& e, float mu) const;  // e(mu) with the iridescent film mixed in
+  vec3 base_reflectance(float mu) const {  // e(mu): the compensated interface's reflectance
+    if (refracts_) return refracting_reflectance(mu);
+    return with_film(vec3(specular_ * (f0_max_ + (1.0f - f0_max_) * base_albedo_.schlick_share(mu))), mu);
+  }
+  vec3 refracting_reflectance(float mu) const;
+  // KHR_materials_iridescence. The film's Fresnel is not Schlick-shaped, so the albedo tables
+  // cannot hold its microfacet average. It is evaluated once per shading point, toward wo, and
+  // carried by the Schlick curve through that value (film_f0_, metal_film_f0_; real-time
+  // viewers evaluate it at N.V alike): exact for a mirror-like surface, whose half vector is
+  // the normal, an approximation of the colour where a rough lobe's half vectors spread; the
+  // layering then holds exactly, and a shading point costs one film evaluation per base.
+  vec3 with_film(const vec3& e, float mu) const {  // e(mu) with the iridescent film mixed in
+    return iridescence_ > 0.0f ? glm::mix(e, film_scale() * film_reflectance(mu), iridescence_) : e;
+  }
   static vec3 schlick_refit(const vec3& f, float mu);
   vec3 film_reflectance(float mu) const;  // the film's e(mu), the Schlick curve through film_f0_
   float film_scale() const { return refracts_ ? 1.0f : specular_; }  // KHR_materials_specular's factor
@@ -139,6 +151,7 @@ class GltfBsdf {
   float e_o_ = 1.0f;  // E(mu_o) of the base lobe
   vec3 reflectance_o_{0.0f};  // e(mu_o): what the compensated interface reflects toward wo
   vec3 multiscatter_color_{0.0f};  // Kulla-Conty's Fresnel term / (pi (1 - avg E)); 0 = no lobe
+  MultiScatterShape multiscatter_shape_;  // that lobe's sampling density, at roughness_
   vec3 metal_scale_{1.0f};  // an anisotropic metal's compensation instead of that lobe
   AnisotropicAlbedo anisotropic_o_{1.0f, -1.0f};  // the anisotropic lobe's toward wo; share < 0: isotropic
   float coat_interface_scale_ = 1.0f;  // 1 / E_coat(mu_o)

@@ -83,26 +83,23 @@ const MultiScatterRows& multiscatter_rows() {
   return rows;
 }
 
+// The nearest grid row, as std::lround would round (halves up), without a library call.
 int nearest_row(float roughness) {
-  return static_cast<int>(std::lround(std::clamp(roughness, 0.0f, 1.0f) * (kAlbedoRoughness - 1)));
+  const float s = std::clamp(roughness, 0.0f, 1.0f) * static_cast<float>(kAlbedoRoughness - 1);
+  const int i = static_cast<int>(s);
+  return s - static_cast<float>(i) >= 0.5f ? i + 1 : i;
 }
 
 }  // namespace
 
-float multiscatter_sample_mu(float roughness, float u) {
-  const float* cdf = multiscatter_rows().cdf[nearest_row(roughness)];
-  int i = 0;
-  while (i + 2 < kAlbedoMu && cdf[i + 1] <= u) ++i;
-  const float share = cdf[i + 1] - cdf[i];
-  const float t = share > 0.0f ? std::clamp((u - cdf[i]) / share, 0.0f, 1.0f) : 0.5f;
-  return (static_cast<float>(i) + t) / (kAlbedoMu - 1);
-}
+MultiScatterShape::MultiScatterShape(float roughness) : cdf_(multiscatter_rows().cdf[nearest_row(roughness)]) {}
 
-float multiscatter_pdf_mu(float roughness, float mu) {
-  if (mu <= 0.0f || mu > 1.0f) return 0.0f;
-  const float* cdf = multiscatter_rows().cdf[nearest_row(roughness)];
-  const GridPos at = locate(mu, kAlbedoMu);
-  return (cdf[at.i + 1] - cdf[at.i]) * (kAlbedoMu - 1);
+float MultiScatterShape::sample_mu(float u) const {
+  int i = 0;
+  while (i + 2 < kAlbedoMu && cdf_[i + 1] <= u) ++i;
+  const float share = cdf_[i + 1] - cdf_[i];
+  const float t = share > 0.0f ? std::clamp((u - cdf_[i]) / share, 0.0f, 1.0f) : 0.5f;
+  return (static_cast<float>(i) + t) / (kAlbedoMu - 1);
 }
 
 void AlbedoSlice::set_roughness(float roughness) {

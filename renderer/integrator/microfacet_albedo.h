@@ -71,8 +71,22 @@ float dielectric_reflectance_average(float roughness, float eta);
 // that shape's integral per interval on the grid row nearest `roughness` (so the
 // sample's weight stays within a small factor of its mean, where a cosine distribution
 // would give weights of 1 / (1 - avg(E)) at grazing angles), phi uniform.
-// The density is over mu; a direction's solid-angle density is it over 2 pi.
-float multiscatter_sample_mu(float roughness, float u);
-float multiscatter_pdf_mu(float roughness, float mu);
+// The density is over mu; a direction's solid-angle density is it over 2 pi. Found once per
+// shading point: its pdf is read at every light sample's direction.
+class MultiScatterShape {
+ public:
+  MultiScatterShape() = default;  // no lobe: set one before reading it
+  explicit MultiScatterShape(float roughness);
+  float sample_mu(float u) const;
+  float pdf_mu(float mu) const {
+    if (mu <= 0.0f || mu > 1.0f) return 0.0f;
+    const float s = mu * static_cast<float>(kAlbedoMu - 1);
+    const int i = static_cast<int>(s) < kAlbedoMu - 2 ? static_cast<int>(s) : kAlbedoMu - 2;
+    return (cdf_[i + 1] - cdf_[i]) * static_cast<float>(kAlbedoMu - 1);
+  }
+
+ private:
+  const float* cdf_ = nullptr;  // the row's cumulative shares at the mu grid's points
+};
 
 }  // namespace tessera
