@@ -137,8 +137,9 @@ void GltfBsdf::compensate(const vec3& wo) {
                        : specular_ * (f0_max_ + (1.0f - f0_max_) * base_albedo_.share_average));
   if (iridescence_ > 0.0f)
     e_avg = glm::mix(e_avg, film_scale() * (film_f0_ + (vec3(1.0f) - film_f0_) * base_albedo_.share_average), iridescence_);
-  for (int c = 0; c < 3; ++c)
-    base_scale_o_[c] = e_avg[c] < 1.0f - 1e-4f ? (1.0f - reflectance_o_[c]) / (1.0f - e_avg[c]) : 0.0f;
+  auto base_scale = [&](int c) { return e_avg[c] < 1.0f - 1e-4f ? (1.0f - reflectance_o_[c]) / (1.0f - e_avg[c]) : 0.0f; };
+  // Without a film both are grey: one quotient serves the three channels.
+  base_scale_o_ = iridescence_ > 0.0f ? vec3(base_scale(0), base_scale(1), base_scale(2)) : vec3(base_scale(0));
   // Kulla and Conty: the Fresnel average of Schlick's f0..1 is f0 + (1 - f0) / 21, and the
   // light that leaves after k > 1 bounces sums to F_avg^2 E_avg / (1 - F_avg (1 - E_avg)) of
   // the lost share. Below 1e-4 lost on average there is nothing to restore.
