@@ -224,8 +224,8 @@ BuiltFrame build_frame(LoadedScene loaded, const FramePlan& plan, SceneCache* ca
   built.seconds = seconds_since(start);
   const RenderSettings& s = plan.settings;
   const bool cropped = s.window.cropped();  // the camera sees the whole frame
-  built.camera = make_camera(plan.camera, cropped ? s.window.full_width : s.width,
-                             cropped ? s.window.full_height : s.height, plan.camera_params);
+  built.camera = built.scene->camera(plan.camera, cropped ? s.window.full_width : s.width,
+                                     cropped ? s.window.full_height : s.height, plan.camera_params);
   if (plan.camera_params.aperture > 0.0f && plan.camera_params.focus_distance <= 0.0f)
     built.camera.focus_distance = autofocus_distance(*built.scene, built.camera);
   return built;

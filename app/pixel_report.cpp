@@ -30,12 +30,13 @@ std::string material_name(const SceneDescription& scene, int material) {
   return fmt::format("material {} '{}'", material, scene.materials[material].name);
 }
 
-void print_path(const SceneDescription& scene, int sample, const PathRecord& path, const vec3& radiance) {
+// Positions in world coordinates: the render frame's moved back by its origin.
+void print_path(const RenderScene& scene, int sample, const PathRecord& path, const vec3& radiance) {
   fmt::print("sample {}: radiance {}\n", sample, triple(radiance));
   for (std::size_t i = 0; i < path.vertices.size(); ++i) {
     const PathVertex& v = path.vertices[i];
-    fmt::print("  vertex {}: position {}  normal {}  {}\n", i + 1, triple(v.position), triple(v.normal),
-               material_name(scene, v.material));
+    fmt::print("  vertex {}: position {}  normal {}  {}\n", i + 1, triple(v.position + scene.origin), triple(v.normal),
+               material_name(scene.description, v.material));
     fmt::print("    throughput {}  emitted {}  direct light {}\n", triple(v.throughput), triple(v.emitted),
                triple(v.direct));
     if (!v.lobe.empty()) fmt::print("    sampled {}, pdf {:.6g}\n", v.lobe, v.pdf);
@@ -55,11 +56,10 @@ int run_pixel_report(const RenderOptions& o, const GltfDocument& document) {
   const PixelTraceParams params = parse_pixel(o.pixel, settings.width, settings.height);
   const BuiltFrame built = build_frame(std::move(loaded), plan);
   const PixelTrace trace = trace_pixel(*built.scene, built.camera, settings, params);
-  const SceneDescription& scene = built.scene->description;
   fmt::print("pixel {},{} of {}x{}: {} spp, seed {}, {} sampler, camera '{}', background {}\n", params.x, params.y,
              settings.width, settings.height, settings.spp, settings.seed, sampler_name(settings.sampler),
              plan.camera.name, plan.background);
-  for (std::size_t s = 0; s < trace.paths.size(); ++s) print_path(scene, static_cast<int>(s), trace.paths[s], trace.radiance[s]);
+  for (std::size_t s = 0; s < trace.paths.size(); ++s) print_path(*built.scene, static_cast<int>(s), trace.paths[s], trace.radiance[s]);
   if (trace.samples > static_cast<int>(trace.paths.size()))
     fmt::print("({} more samples not shown)\n", trace.samples - static_cast<int>(trace.paths.size()));
   fmt::print("mean of {} samples: ({:.6g}, {:.6g}, {:.6g}){}\n", trace.samples, trace.mean.x, trace.mean.y, trace.mean.z,

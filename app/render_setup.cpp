@@ -72,7 +72,7 @@ MeasuredScene load_measured_scene(const std::string& path, int width, const std:
   const auto build = std::chrono::steady_clock::now();
   m.scene = std::make_unique<RenderScene>(std::move(loaded.scene), env);
   m.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - build).count();
-  m.camera = make_camera(camera, m.width, m.height, {});
+  m.camera = m.scene->camera(camera, m.width, m.height, {});
   return m;
 }
 

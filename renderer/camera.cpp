@@ -93,7 +93,11 @@ void RenderCamera::generate_rays(const vec2* film, const vec2* lens, const float
   for (; k < n; ++k) out[k] = generate_ray(film[k], lens[k], time[k]);
 }
 
-glm::mat4 RenderCamera::world_to_camera(float time) const { return glm::inverse(camera_to_world_at(time)); }
+glm::mat4 RenderCamera::world_to_camera(float time) const {
+  glm::mat4 to_world = camera_to_world_at(time);
+  to_world[3] += glm::vec4(origin, 0.0f);
+  return glm::inverse(to_world);
+}
 
 glm::mat4 RenderCamera::world_to_ndc(float time) const {
   const float n = znear > 0.0f ? znear : 1e-3f;

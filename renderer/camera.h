@@ -26,6 +26,9 @@ struct RenderCamera {
   float aspect = 1.0f;  // image width / height
   float lens_radius = 0.0f, focus_distance = 1.0f;
   float znear = 0.0f, zfar = 0.0f;
+  // The world point at the origin of the frame its rays are in (RenderScene::origin): its
+  // projections below are of world coordinates.
+  vec3 origin{0.0f};
 
   // film: position on the image in [0,1]^2, (0,0) the top-left corner; lens in [0,1)^2;
   // time: the fraction of the shutter in [0, 1), which the ray carries.
@@ -38,13 +41,14 @@ struct RenderCamera {
   // Where the camera looks and stands: at the shutter's opening.
   vec3 forward() const { return -glm::vec3(camera_to_world[2]); }
   vec3 position() const { return glm::vec3(camera_to_world[3]); }
-  // Its projections at `time`, the fraction of the shutter (0: the opening).
+  // Its projections of world coordinates at `time`, the fraction of the shutter (0: the opening).
   glm::mat4 world_to_camera(float time = 0.0f) const;
   glm::mat4 world_to_ndc(float time = 0.0f) const;  // camera space -> [-1,1]^2 screen, z = depth
 };
 
 // The camera from the scene description (vertical fov, aspect from the image), with its
-// motion when it has any (Camera::motion; steps equal to step 0 are no motion).
+// motion when it has any (Camera::motion; steps equal to step 0 are no motion). In world
+// coordinates: for a RenderScene, RenderScene::camera makes it for the scene's render frame.
 RenderCamera make_camera(const Camera& cam, int width, int height, const CameraParams& params);
 
 // A perspective camera on +Z of the bounds' centre looking down -Z that frames the bounding

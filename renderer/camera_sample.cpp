@@ -8,6 +8,7 @@ namespace tessera {
 
 CameraSampler::CameraSampler(const RenderScene& scene, const RenderCamera& camera, const RenderSettings& settings)
     : scene_(scene), camera_(camera), settings_(settings), filter_(settings.filter), forward_(camera.forward()) {
+  scene.check_camera(camera);
   params_.max_bounces = settings.max_bounces;
   params_.light_sampling = settings.light_sampling;
   params_.clamp = settings.clamp;

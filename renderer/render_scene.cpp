@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "renderer/packet_check.h"
+#include "renderer/render_origin.h"
 
 namespace tessera {
 
@@ -59,6 +60,7 @@ bool RenderScene::update(SceneDescription& next) {
       !geometry->can_update(next))
     return false;
   const auto start = std::chrono::steady_clock::now();
+  move_to_render_frame(next, origin);
   // In place: the BVH, the filters and the lights keep pointers to these meshes.
   std::vector<std::vector<char>> changed_primitives(description.meshes.size());
   for (std::size_t m = 0; m < description.meshes.size(); ++m)
@@ -84,13 +86,25 @@ bool RenderScene::update(SceneDescription& next) {
 }
 
 RenderScene::RenderScene(SceneDescription scene, const EnvironmentParams& env)
-    : description(std::move(scene)), environment(env), materials(description) {
+    : origin(render_origin(scene)), description(std::move(scene)), environment(env), materials(description) {
+  move_to_render_frame(description, origin);
   const auto start = std::chrono::steady_clock::now();
   geometry = std::make_unique<SceneGeometry>(description, device.get(), &materials);
   bvh_build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   geometry->use_packets(packets_match_single_rays(device.get(), geometry->moves()));
   area_lights = std::make_unique<AreaLights>(description, *geometry, materials);
   light_motion = light_motions(description);
+}
+
+RenderCamera RenderScene::camera(const Camera& cam, int width, int height, const CameraParams& params) const {
+  RenderCamera rc = make_camera(camera_in_render_frame(cam, origin), width, height, params);
+  rc.origin = origin;
+  return rc;
+}
+
+void RenderScene::check_camera(const RenderCamera& camera) const {
+  if (camera.origin != origin)
+    throw std::invalid_argument("a camera made for another frame than the scene's render frame (use RenderScene::camera)");
 }
 
 }  // namespace tessera

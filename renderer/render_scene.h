@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <memory>
 
+#include "renderer/camera.h"
 #include "renderer/environment.h"
 #include "renderer/integrator/area_lights.h"
 #include "renderer/integrator/materials.h"
@@ -30,8 +31,19 @@ class EmbreeDevice {
 };
 
 struct RenderScene {
-  // Takes the description by value: the BVH and shading keep pointers into it.
+  // Takes the description by value: the BVH and shading keep pointers into it. It is kept
+  // moved to the render frame (render_origin.h).
   RenderScene(SceneDescription scene, const EnvironmentParams& env);
+
+  // The world point at the render frame's origin: 0 unless the scene is still and far from
+  // the origin for its size.
+  vec3 origin{0.0f};
+  // A camera of the world (the description's as loaded, the command line's, the automatic
+  // one), looking at this scene in its render frame.
+  RenderCamera camera(const Camera& cam, int width, int height, const CameraParams& params) const;
+  // Throws std::invalid_argument unless `camera` looks at this scene's render frame (made by
+  // camera(), or by make_camera for a scene that was not moved).
+  void check_camera(const RenderCamera& camera) const;
 
   SceneDescription description;
   EmbreeDevice device;

@@ -49,6 +49,7 @@ std::uint64_t trace_pixel(const RenderScene& scene, const RenderCamera& camera, 
 
 TraversalCeilingResult trace_traversal_ceiling(const RenderScene& scene, const RenderCamera& camera,
                                                const TraversalCeilingParams& p) {
+  scene.check_camera(camera);
   std::atomic<std::uint64_t> rays{0};
   const auto start = std::chrono::steady_clock::now();
   CameraCoverage coverage;

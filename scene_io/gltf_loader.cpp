@@ -94,16 +94,18 @@ class Converter {
  private:
   // Floats far from the origin resolve a small scene coarsely: rays leave its surfaces
   // ray_offset_at(distance) off, and where that is a visible share of it, its lighting is
-  // biased (the Cornell box 10,000 units out rendered 30% dark, 1,000 out 0.5% bright).
+  // biased (the Cornell box 10,000 units out rendered 30% dark, 1,000 out 0.5% bright). A still
+  // scene is rendered about its own centre (renderer/render_origin.h); an animated one where
+  // it is, so that is worth a warning.
   void check_precision() {
     const Bounds3& b = out_.bounds;
-    if (b.empty()) return;
+    if (b.empty() || !out_.animated) return;
     const glm::vec3 reach = glm::max(glm::abs(b.lo), glm::abs(b.hi)), size = b.diagonal();
     const float distance = std::max({reach.x, reach.y, reach.z}), extent = std::max({size.x, size.y, size.z});
     const float offset = ray_offset_at(std::max(distance, 1.0f));
     if (extent > 0.0f && offset > 0.01f * extent)
       warnings_.push_back(fmt::format(
-          "the scene reaches {:g} from the origin, {:.0f} times its size: rays leave its surfaces {:.2g} off "
+          "the animated scene reaches {:g} from the origin, {:.0f} times its size: rays leave its surfaces {:.2g} off "
           "({:.1f}% of its size), which biases its lighting; move it nearer the origin",
           distance, distance / extent, offset, 100.0f * offset / extent));
   }

@@ -32,7 +32,8 @@ test::CommandResult tessera(const std::string& args) {
 // towards any viewer (and nothing else lights the scene under --background 0).
 constexpr double kPlaneRadiance = 0.5 * 2.0 / 3.14159265358979323846;
 
-std::string half_plane_gltf(const std::string& dir) {
+// `place`: the plane's node's translation, as JSON ("[x, y, z]"); none: at the origin.
+std::string half_plane_gltf(const std::string& dir, const std::string& place = "") {
   std::vector<std::uint8_t> bin;
   auto put = [&](const void* data, std::size_t n) {
     const auto* b = static_cast<const std::uint8_t*>(data);
@@ -49,7 +50,7 @@ std::string half_plane_gltf(const std::string& dir) {
     "extensionsUsed": ["KHR_lights_punctual", "KHR_materials_specular"],
     "extensions": {"KHR_lights_punctual": {"lights": [{"type": "directional", "intensity": 2}]}},
     "scene": 0, "scenes": [{"nodes": [0, 1]}],
-    "nodes": [{"mesh": 0},
+    "nodes": [{"mesh": 0)" + (place.empty() ? "" : ", \"translation\": " + place) + R"(},
               {"rotation": [-0.70710678, 0, 0, 0.70710678], "extensions": {"KHR_lights_punctual": {"light": 0}}}],
     "materials": [{"name": "grey", "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1],
                    "metallicFactor": 0, "roughnessFactor": 1},
@@ -136,6 +137,38 @@ TEST(CliPixel, MeanIsTheFullRendersPixel) {
     EXPECT_NEAR(printed_mean(r.out), pixel, 1e-6 + 1e-5 * pixel) << "pixel " << x << ",4\n" << r.out;
   }
   EXPECT_NEAR(rgb[3 * (4 * 9 + 2)], kPlaneRadiance, 1e-5);  // wholly on the plane
+}
+
+// 10,000 units out (for a plane 2 across: rendered about its centre, render_origin.h), the
+// paths are printed and the EXR's camera matrix written in world coordinates, and the plane
+// still shows exactly its closed form.
+TEST(CliPixel, AFarSceneIsReportedInWorldCoordinates) {
+  const std::string dir = test::make_temp_dir("cli-pixel-far");
+  const std::string scene = half_plane_gltf(dir, "[10000, 0, 0]"), out = dir + "/far.exr";
+  const std::string view = " --look-at 10000,2,0,10000,0,0,0,0,-1 --width 9 --height 9 --background 0 --seed 3 --spp 16 ";
+  const auto r = tessera("render " + quote(scene) + view + "--pixel 2,4");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  int hits = 0;
+  for (const PrintedSample& s : printed_samples(r.out)) {
+    ASSERT_TRUE(s.hit) << r.out;  // column 2 lies wholly on the plane
+    ++hits;
+    EXPECT_NEAR(s.x, 9999.55, 0.2) << r.out;  // world x: the column's centre line is 10000 - 4/9
+    EXPECT_NEAR(s.y, 0.0, 1e-3) << r.out;
+    EXPECT_NEAR(s.radiance, kPlaneRadiance, 1e-5 * kPlaneRadiance) << r.out;
+  }
+  EXPECT_EQ(hits, 4) << r.out;
+  const auto full = tessera("render " + quote(scene) + view + "-q -o " + quote(out));
+  ASSERT_EQ(full.exit_code, 0) << full.err;
+  const std::vector<float> m = test::exr_m44f(out, "worldToCamera");  // row vectors: p' = p m
+  auto to_camera = [&](float x, float y, float z) {
+    return glm::vec3(x * m[0] + y * m[4] + z * m[8] + m[12], x * m[1] + y * m[5] + z * m[9] + m[13],
+                     x * m[2] + y * m[6] + z * m[10] + m[14]);
+  };
+  const glm::vec3 eye = to_camera(10000, 2, 0), target = to_camera(10000, 0, 0);
+  EXPECT_NEAR(glm::length(eye), 0.0f, 2e-3f);
+  EXPECT_NEAR(target.x, 0.0f, 2e-3f);
+  EXPECT_NEAR(target.y, 0.0f, 2e-3f);
+  EXPECT_NEAR(target.z, -2.0f, 2e-3f);  // two ahead, down the camera's -z
 }
 
 TEST(CliPixel, OutsideTheFrameIsRefused) {

@@ -18,7 +18,7 @@ RenderResult render(SceneDescription scene, const Camera& cam, RenderSettings s,
   EnvironmentParams env;
   env.background = background;
   RenderScene rs(std::move(scene), env);
-  return render_frame(rs, make_camera(cam, s.width, s.height, lens), s);
+  return render_frame(rs, rs.camera(cam, s.width, s.height, lens), s);
 }
 
 using test::PixelStats;
@@ -213,6 +213,12 @@ TEST(RenderClosedForm, FloorUnderASquareEmitterMatchesTheFormFactor) { expect_fl
 // 2 mm towards the light: 6e-5 too bright here, within the 1e-4 allowed.
 TEST(RenderClosedForm, FloorUnderASquareEmitterFarFromTheOriginMatchesTheFormFactor) {
   expect_floor_under_square_emitter(100.0f);
+}
+
+// 10,000 units up, where floats are 1e-3 apart and rays would leave the floor 0.25 above it
+// (a quarter of the way to the light): it is rendered about its centre (render_origin.h).
+TEST(RenderClosedForm, FloorUnderASquareEmitterTenThousandUnitsUpMatchesTheFormFactor) {
+  expect_floor_under_square_emitter(1e4f);
 }
 
 // KHR_materials_diffuse_transmission: a sheet with no specular layer (pure Lambert), base

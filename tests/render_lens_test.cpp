@@ -46,8 +46,7 @@ BlurMeasurement measure_blur(float depth, float side, float focus, float apertur
   s.max_bounces = 0;
   const float fov = 30.0f;
   RenderScene rs(std::move(scene), EnvironmentParams{});
-  const RenderCamera rc = make_camera(test::look_at({0, 0, 0}, {0, 0, -1}, fov), s.width, s.height,
-                                      {0.0f, aperture, focus});
+  const RenderCamera rc = rs.camera(test::look_at({0, 0, 0}, {0, 0, -1}, fov), s.width, s.height, {0.0f, aperture, focus});
   const FrameImage img = render_frame(rs, rc, s).image;
   double sum = 0, cx = 0, cy = 0;
   for (int y = 0; y < img.height; ++y)

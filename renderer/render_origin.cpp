@@ -1,0 +1,43 @@
+#include "renderer/render_origin.h"
+
+#include <algorithm>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace tessera {
+namespace {
+
+void move(glm::mat4& m, const vec3& origin) { m[3] -= glm::vec4(origin, 0.0f); }
+
+void move_all(glm::mat4& m, std::vector<glm::mat4>& steps, const vec3& origin) {
+  move(m, origin);
+  for (glm::mat4& s : steps) move(s, origin);
+}
+
+}  // namespace
+
+vec3 render_origin(const SceneDescription& scene) {
+  const Bounds3& b = scene.bounds;
+  if (scene.animated || b.empty()) return vec3(0.0f);
+  const vec3 reach = glm::max(glm::abs(b.lo), glm::abs(b.hi)), size = b.diagonal();
+  const float distance = std::max({reach.x, reach.y, reach.z}), extent = std::max({size.x, size.y, size.z});
+  return distance > kFarForItsSize * extent ? b.center() : vec3(0.0f);
+}
+
+void move_to_render_frame(SceneDescription& scene, const vec3& origin) {
+  if (origin == vec3(0.0f)) return;
+  for (Instance& instance : scene.instances) move_all(instance.object_to_world, instance.motion, origin);
+  for (Camera& camera : scene.cameras) move_all(camera.camera_to_world, camera.motion, origin);
+  for (PunctualLight& light : scene.lights) {
+    light.position -= origin;
+    move_all(light.light_to_world, light.motion, origin);
+  }
+  if (!scene.bounds.empty()) scene.bounds = {scene.bounds.lo - origin, scene.bounds.hi - origin};
+}
+
+Camera camera_in_render_frame(Camera camera, const vec3& origin) {
+  move_all(camera.camera_to_world, camera.motion, origin);
+  return camera;
+}
+
+}  // namespace tessera
