@@ -86,6 +86,7 @@ class Converter {
                                           [](const tinygltf::Primitive& p) { return !p.targets.empty(); });
     traverse(roots);
     check_precision();
+    check_clipping();
     check_unused_objects(used);
     for (std::string& w : defects_.unused_warnings()) warnings_.push_back(std::move(w));
     check_unread_accessors();
@@ -108,6 +109,25 @@ class Converter {
           "the animated scene reaches {:g} from the origin, {:.0f} times its size: rays leave its surfaces {:.2g} off "
           "({:.1f}% of its size), which biases its lighting; move it nearer the origin",
           distance, distance / extent, offset, 100.0f * offset / extent));
+  }
+
+  // A camera whose clipping planes leave out every surface shows only the background: znear
+  // beyond the farthest corner of the scene's bounds, or zfar short of the nearest point (as a
+  // scene scaled down under a camera with znear 0.01, which the node's scale does not scale).
+  void check_clipping() {
+    const Bounds3& b = out_.bounds;
+    if (b.empty()) return;
+    for (const Camera& cam : out_.cameras) {
+      const glm::vec3 eye(cam.camera_to_world[3]);
+      const glm::vec3 nearest = glm::clamp(eye, b.lo, b.hi), farthest = glm::mix(b.lo, b.hi, glm::lessThan(eye, b.center()));
+      const float near = glm::distance(eye, nearest), far = glm::distance(eye, farthest);
+      if (cam.znear > far)
+        warnings_.push_back(fmt::format("camera '{}' shows only the background: its znear {:g} lies beyond the whole "
+                                        "scene (at most {:.3g} from it)", cam.name, cam.znear, far));
+      else if (cam.zfar > 0.0f && cam.zfar < near)
+        warnings_.push_back(fmt::format("camera '{}' shows only the background: its zfar {:g} falls short of the "
+                                        "whole scene (at least {:.3g} from it)", cam.name, cam.zfar, near));
+    }
   }
 
   // A used skin's joints must be in the scene that uses it (the validator's NODE_SKIN_NO_SCENE).

@@ -476,6 +476,27 @@ TEST(GltfLoader, AnAnimatedSceneFarFromTheOriginForItsSizeIsWarnedAbout) {
                                         "move it nearer the origin"});
 }
 
+// A camera 10 in front of a unit triangle: a znear beyond its farthest corner (10.1) or a
+// zfar short of its nearest point (10) leaves only the background, and says so.
+TEST(GltfLoader, ACameraWhoseClippingPlanesLeaveOutTheWholeSceneIsWarnedAbout) {
+  auto warnings_for = [](const std::string& planes) {
+    const std::vector<std::uint8_t> tri = triangle_gltf({0, 0, 0, 1, 0, 0, 0, 1, 0});
+    std::string json(tri.begin(), tri.end());
+    json.replace(json.find(R"("scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"), 46,
+                 R"("scenes":[{"nodes":[0,1]}],"nodes":[{"mesh":0},{"camera":0,"translation":[0,0,10]}],)"
+                 R"("cameras":[{"name":"eye","type":"perspective","perspective":{"yfov":0.5,)" + planes + "}}],");
+    return load_gltf_from_memory({json.begin(), json.end()}, "clip.gltf", ".").warnings;
+  };
+  EXPECT_EQ(warnings_for(R"("znear":0.01,"zfar":100)"), std::vector<std::string>{});
+  EXPECT_EQ(warnings_for(R"("znear":10.05)"), std::vector<std::string>{});  // the far corners remain
+  EXPECT_EQ(warnings_for(R"("znear":20)"),
+            std::vector<std::string>{"camera 'eye' shows only the background: its znear 20 lies beyond the whole scene "
+                                     "(at most 10.1 from it)"});
+  EXPECT_EQ(warnings_for(R"("znear":0.01,"zfar":5)"),
+            std::vector<std::string>{"camera 'eye' shows only the background: its zfar 5 falls short of the whole "
+                                     "scene (at least 10 from it)"});
+}
+
 TEST(GltfLoader, DeepHierarchyIsWalkedWithoutRecursion) {
   // 200000 nodes in a chain, each translated by 0.5 in y; the last places the mesh. A
   // recursive walk would overflow the stack; the leaf lands exactly at y = 100000.
