@@ -77,6 +77,7 @@ GltfBsdf::GltfBsdf(const ShadingPoint& sp, const vec3& wo, float eta, const Fram
   weight_[kClearcoat] = share(w_clearcoat);
   lambda_o_ = ggx_.lambda(wo);
   g1_o_ = 1.0f / (1.0f + lambda_o_);
+  specular_pdf_scale_ = g1_o_ / (4.0f * wo.z);
 }
 
 // KHR_materials_anisotropy (the specification's alpha_t = mix(alpha, 1, strength^2) along the
@@ -214,7 +215,7 @@ GltfBsdf::HalfVector GltfBsdf::half_vector(const vec3& wo, const vec3& wi) const
 
 vec3 GltfBsdf::reflection(const vec3& wo, const vec3& wi, const HalfVector& m) const {
   const float cos_oh = m.cos_oh;
-  const float spec = m.d * GgxDistribution::G2(lambda_o_, ggx_.lambda(wi)) / (4.0f * wo.z * wi.z);
+  const float spec = m.d / ((1.0f + lambda_o_ + ggx_.lambda(wi)) * (4.0f * wo.z * wi.z));  // D G2 / (4 cos cos)
   vec3 f(0.0f);
   if (metallic_ < 1.0f) {
     const vec3 base_share = base_scale_o_ * (vec3(1.0f) - base_reflectance(wi.z));
@@ -299,9 +300,8 @@ const char* GltfBsdf::lobe_name(int lobe) {
     case kMultiScatter: return wi.z > 0.0f ? multiscatter_shape_.pdf_mu(wi.z) * (0.5f * kInvPi) : 0.0f;
     case kDiffuseTransmission: return wi.z < 0.0f ? -wi.z * kInvPi : 0.0f;
     case kClearcoat: return coat_pdf(wo, wi);
-    case kSpecular:
-      if (wi.z <= 0.0f) return 0.0f;
-      return GgxDistribution::visible_pdf(g1_o_, wo.z, m.cos_oh, m.d) / (4.0f * m.cos_oh);
+    case kSpecular:  // G1(wo) max(0, wo.h) D(h) / wo.z over the reflection's 4 wo.h
+      return wi.z > 0.0f && m.cos_oh > 0.0f ? m.d * specular_pdf_scale_ : 0.0f;
     default: {  // transmission
       if (wi.z >= 0.0f || !refracts_) return 0.0f;  // the thin pass is a delta
       vec3 h = wi * eta_ + wo;

@@ -164,6 +164,7 @@ class GltfBsdf {
   vec3 straight_{0.0f};  // the thin-walled straight pass; 0 for a volume or no transmission
   GgxDistribution ggx_, coat_ggx_;
   float lambda_o_ = 0.0f, g1_o_ = 1.0f;  // Smith's lambda and G1 of ggx_ toward wo
+  float specular_pdf_scale_ = 0.0f;  // G1(wo) / (4 wo.z): the specular lobe's pdf over D
   vec3 sheen_color_;
   CharlieSheen sheen_;
   float sheen_max_;  // max component of the sheen colour; 0 = no sheen
