@@ -2,8 +2,6 @@
 
 #include <algorithm>
 
-#include <glm/gtc/matrix_transform.hpp>
-
 namespace tessera {
 namespace {
 
