@@ -1,7 +1,5 @@
 #include "renderer/render_origin.h"
 
-#include <algorithm>
-
 namespace tessera {
 namespace {
 
@@ -17,8 +15,7 @@ void move_all(glm::mat4& m, std::vector<glm::mat4>& steps, const vec3& origin) {
 vec3 render_origin(const SceneDescription& scene) {
   const Bounds3& b = scene.bounds;
   if (scene.animated || b.empty()) return vec3(0.0f);
-  const vec3 reach = glm::max(glm::abs(b.lo), glm::abs(b.hi)), size = b.diagonal();
-  const float distance = std::max({reach.x, reach.y, reach.z}), extent = std::max({size.x, size.y, size.z});
+  const float distance = max_component(glm::max(glm::abs(b.lo), glm::abs(b.hi))), extent = max_component(b.diagonal());
   return distance > kFarForItsSize * extent ? b.center() : vec3(0.0f);
 }
 

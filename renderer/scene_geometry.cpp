@@ -665,7 +665,7 @@ SurfaceHit SceneGeometry::surface(const Ray& ray, const HitRecord& hit) const {
   SurfaceHit s;
   s.t = hit.t;
   const vec3 largest = glm::max(glm::abs(p0), glm::max(glm::abs(p1), glm::abs(p2)));
-  s.extent = fmax_inline(largest.x, fmax_inline(largest.y, largest.z));
+  s.extent = max_component(largest);
   s.p = (1.0f - hit.u - hit.v) * p0 + hit.u * p1 + hit.v * p2;
   vec3 ng = glm::cross(p1 - p0, p2 - p0) * pl.orientation;
   const float len = glm::length(ng);

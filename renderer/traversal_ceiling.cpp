@@ -23,8 +23,7 @@ Ray diffuse_bounce(const Ray& ray, float t, vec3 normal, const vec2& u) {
   normal = glm::normalize(normal);
   if (glm::dot(normal, ray.direction) > 0.0f) normal = -normal;
   const vec3 wi = Frame::from_normal(normal).to_world(sample_cosine_hemisphere(u));
-  const vec3 size = glm::abs(p);
-  return Ray{offset_ray_origin(p, normal, fmax_inline(size.x, fmax_inline(size.y, size.z))), wi};
+  return Ray{offset_ray_origin(p, normal, max_component(glm::abs(p))), wi};
 }
 
 std::uint64_t trace_pixel(const RenderScene& scene, const RenderCamera& camera, const TraversalCeilingParams& p, int x,
