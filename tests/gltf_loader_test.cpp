@@ -421,6 +421,13 @@ std::vector<std::uint8_t> triangle_gltf(const std::vector<float>& xyz) {
   return {json.begin(), json.end()};
 }
 
+// `text` with its first `from` made `to` (a test's edit of triangle_gltf's JSON).
+void replace_first(std::string& text, const std::string& from, const std::string& to) {
+  const std::size_t at = text.find(from);
+  ASSERT_NE(at, std::string::npos) << from;
+  text.replace(at, from.size(), to);
+}
+
 TEST(GltfLoader, NonFinitePositionsAreRejected) {
   const float nan = std::nanf(""), inf = INFINITY;
   const SceneDescription ok = load_gltf_from_memory(triangle_gltf({0, 0, 0, 1, 0, 0, 0, 1, 0}), "ok.gltf", ".").scene;
@@ -451,20 +458,19 @@ TEST(GltfLoader, AnAnimatedSceneFarFromTheOriginForItsSizeIsWarnedAbout) {
   auto placed_at = [](float y, bool animated) {
     const std::vector<std::uint8_t> tri = triangle_gltf({0, 0, 0, 1, 0, 0, 0, 1, 0});
     std::string json(tri.begin(), tri.end());
-    json.replace(json.find(R"([{"mesh":0}])"), 12, fmt::format(R"([{{"mesh":0,"translation":[0,{},0]}}])", y));
+    replace_first(json, R"([{"mesh":0}])", fmt::format(R"([{{"mesh":0,"translation":[0,{},0]}}])", y));
     if (animated) {  // the same translation as a one-key animation, in a second buffer
       const float key[] = {0, 0, y, 0};
       std::vector<std::uint8_t> bin(sizeof key);
       std::memcpy(bin.data(), key, sizeof key);
-      json.replace(json.find(R"("bufferViews":[)"), 15,
-                   R"("animations":[{"channels":[{"sampler":0,"target":{"node":0,"path":"translation"}}],)"
-                   R"("samplers":[{"input":1,"output":2}]}],"bufferViews":[{"buffer":1,"byteLength":16},)");
-      json.replace(json.find(R"("max":[1,1,0]})"), 14,
-                   R"("max":[1,1,0]},{"bufferView":1,"componentType":5126,"count":1,"type":"SCALAR","min":[0],"max":[0]},)"
-                   R"({"bufferView":1,"byteOffset":4,"componentType":5126,"count":1,"type":"VEC3"})");
+      replace_first(json, R"("bufferViews":[{"buffer":0,"byteLength":36}])",
+                    R"("animations":[{"channels":[{"sampler":0,"target":{"node":0,"path":"translation"}}],)"
+                    R"("samplers":[{"input":1,"output":2}]}],"bufferViews":[{"buffer":0,"byteLength":36},)"
+                    R"({"buffer":1,"byteLength":16}])");
+      replace_first(json, R"("max":[1,1,0]})",
+                    R"("max":[1,1,0]},{"bufferView":1,"componentType":5126,"count":1,"type":"SCALAR","min":[0],"max":[0]},)"
+                    R"({"bufferView":1,"byteOffset":4,"componentType":5126,"count":1,"type":"VEC3"})");
       json.replace(json.rfind("}]}"), 3, R"(},{"byteLength":16,"uri":"data:application/octet-stream;base64,)" + test::base64(bin) + R"("}]})");
-      json.replace(json.find(R"({"buffer":1,"byteLength":16},{"buffer":0,"byteLength":36})"), 57,
-                   R"({"buffer":0,"byteLength":36},{"buffer":1,"byteLength":16})");
     }
     return load_gltf_from_memory({json.begin(), json.end()}, "far.gltf", ".").warnings;
   };
@@ -482,9 +488,9 @@ TEST(GltfLoader, ACameraWhoseClippingPlanesLeaveOutTheWholeSceneIsWarnedAbout) {
   auto warnings_for = [](const std::string& planes) {
     const std::vector<std::uint8_t> tri = triangle_gltf({0, 0, 0, 1, 0, 0, 0, 1, 0});
     std::string json(tri.begin(), tri.end());
-    json.replace(json.find(R"("scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"), 46,
-                 R"("scenes":[{"nodes":[0,1]}],"nodes":[{"mesh":0},{"camera":0,"translation":[0,0,10]}],)"
-                 R"("cameras":[{"name":"eye","type":"perspective","perspective":{"yfov":0.5,)" + planes + "}}],");
+    replace_first(json, R"("scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)",
+                  R"("scenes":[{"nodes":[0,1]}],"nodes":[{"mesh":0},{"camera":0,"translation":[0,0,10]}],)"
+                  R"("cameras":[{"name":"eye","type":"perspective","perspective":{"yfov":0.5,)" + planes + "}}],");
     return load_gltf_from_memory({json.begin(), json.end()}, "clip.gltf", ".").warnings;
   };
   EXPECT_EQ(warnings_for(R"("znear":0.01,"zfar":100)"), std::vector<std::string>{});
@@ -506,7 +512,7 @@ TEST(GltfLoader, DeepHierarchyIsWalkedWithoutRecursion) {
   nodes += R"({"translation":[0,0.5,0],"mesh":0})";
   const std::vector<std::uint8_t> tri = triangle_gltf({0, 0, 0, 1, 0, 0, 0, 1, 0});
   std::string json(tri.begin(), tri.end());
-  json.replace(json.find(R"([{"mesh":0}])"), 12, "[" + nodes + "]");
+  replace_first(json, R"([{"mesh":0}])", "[" + nodes + "]");
   const SceneDescription s = load_gltf_from_memory({json.begin(), json.end()}, "deep.gltf", ".").scene;
   ASSERT_EQ(s.instances.size(), 1u);
   EXPECT_EQ(s.instances[0].object_to_world[3], glm::vec4(0, 0.5f * n, 0, 1));
