@@ -1,9 +1,10 @@
 // The traversal-only pass `tessera bench` measures tessera against: it traces exactly the
-// rays its definition says. Inside a closed sphere of any size every path bounces until its limit; with
-// nothing in the scene each camera ray is the whole path; with the camera outside a sphere
-// that fills part of the view, every path that enters the sphere's image and bounces off its
-// convex outside leaves after one bounce. Camera rays culled (their pixels' rays provably miss)
-// are exactly the rays a pass that traces every camera ray spends on those pixels.
+// rays its definition says. Inside a closed sphere of any size every path bounces until its
+// limit; with nothing in the scene each camera ray is the whole path; with the camera outside
+// a sphere that fills part of the view, every path that enters the sphere's image and bounces
+// off its convex outside leaves after one bounce. Camera rays culled (their pixels' rays
+// provably miss) are exactly the rays a pass that traces every camera ray spends on those
+// pixels.
 #include <gtest/gtest.h>
 
 #include "renderer/render_scene.h"
