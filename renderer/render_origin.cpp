@@ -15,8 +15,7 @@ void move_all(glm::mat4& m, std::vector<glm::mat4>& steps, const vec3& origin) {
 vec3 render_origin(const SceneDescription& scene) {
   const Bounds3& b = scene.bounds;
   if (scene.animated || b.empty()) return vec3(0.0f);
-  const float distance = max_component(glm::max(glm::abs(b.lo), glm::abs(b.hi))), extent = max_component(b.diagonal());
-  return distance > kFarForItsSize * extent ? b.center() : vec3(0.0f);
+  return b.reach() > kFarForItsSize * b.longest_side() ? b.center() : vec3(0.0f);
 }
 
 void move_to_render_frame(SceneDescription& scene, const vec3& origin) {

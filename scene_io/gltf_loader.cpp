@@ -101,8 +101,7 @@ class Converter {
   void check_precision() {
     const Bounds3& b = out_.bounds;
     if (b.empty() || !out_.animated) return;
-    const glm::vec3 reach = glm::max(glm::abs(b.lo), glm::abs(b.hi)), size = b.diagonal();
-    const float distance = std::max({reach.x, reach.y, reach.z}), extent = std::max({size.x, size.y, size.z});
+    const float distance = b.reach(), extent = b.longest_side();
     const float offset = ray_offset_at(std::max(distance, 1.0f));
     if (extent > 0.0f && offset > 0.01f * extent)
       warnings_.push_back(fmt::format(

@@ -3,6 +3,7 @@
 // Units and conventions follow glTF 2.0: metres, right-handed, +Y up, cameras look down -Z.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -27,6 +28,16 @@ struct Bounds3 {
   void extend(const Bounds3& b) { lo = glm::min(lo, b.lo); hi = glm::max(hi, b.hi); }
   glm::vec3 center() const { return 0.5f * (lo + hi); }
   glm::vec3 diagonal() const { return hi - lo; }
+  // How far from the origin it reaches (its largest |coordinate|) and its longest side: how
+  // finely floats hold it (render_origin.h, the loader's warning).
+  float reach() const {
+    const glm::vec3 r = glm::max(glm::abs(lo), glm::abs(hi));
+    return std::max(r.x, std::max(r.y, r.z));
+  }
+  float longest_side() const {
+    const glm::vec3 d = diagonal();
+    return std::max(d.x, std::max(d.y, d.z));
+  }
 };
 
 // Decoded image pixels as stored in the file: 8 or 16 bits per channel (normalized
