@@ -7,7 +7,6 @@
 #include "app/command_parser.h"
 #include "app/commands.h"
 #include "app/exit_codes.h"
-#include "app/isa_dispatch.h"
 #include "app/render_setup.h"
 #include "renderer/image_output.h"
 #include "renderer/render.h"
@@ -93,8 +92,8 @@ int run_bench(const BenchOptions& o) {
   if (scenes.empty())
     for (const std::string& s : default_bench_scenes()) scenes.push_back(std::string(TESSERA_SCENES_DIR) + "/" + s);
   const int threads = o.threads > 0 ? o.threads : default_thread_count();
-  fmt::print("{} bench: {} spp, {} threads, median of {} renders, 8 bounces, malloc on {}\n\n", version_line(), o.spp,
-             threads, o.repeat, malloc_asks_for_huge_pages() ? "huge pages" : "4 KiB pages");
+  fmt::print("{} bench: {} spp, {} threads, median of {} renders, 8 bounces\n\n", version_line(), o.spp,
+             threads, o.repeat);
   fmt::print("| scene | triangles | image | load s | build s | median s | M samples/s | M rays/s | camera rays culled "
              "| Embree alone, M rays/s | tessera / Embree alone |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const std::string& path : scenes) {

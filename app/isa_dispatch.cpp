@@ -6,7 +6,6 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <string>
 #include <string_view>
 
 #include <fmt/format.h>
@@ -50,16 +49,6 @@ bool cpu_runs_x86_64_v3() {
 #endif
 }
 
-std::string tunables_with_huge_pages(const std::string& tunables) {
-  if (tunables.find("glibc.malloc.hugetlb=") != std::string::npos) return tunables;
-  return tunables + (tunables.empty() ? "" : ":") + "glibc.malloc.hugetlb=1";
-}
-
-bool malloc_asks_for_huge_pages() {
-  const char* tunables = std::getenv("GLIBC_TUNABLES");
-  return tunables && std::string_view(tunables).find("glibc.malloc.hugetlb=1") != std::string_view::npos;
-}
-
 std::string program_for_isa(const std::string& isa) {
   std::error_code ec;
   const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
@@ -82,8 +71,6 @@ int run_chosen_isa(char** argv) {
   if (wanted == kV3 && !cpu_runs_x86_64_v3())
     return isa_error("TESSERA_ISA=x86-64-v3, but this CPU lacks AVX2, FMA or BMI2");
   const std::string program = program_for_isa(wanted);
-  const char* tunables = std::getenv("GLIBC_TUNABLES");
-  setenv("GLIBC_TUNABLES", tunables_with_huge_pages(tunables ? tunables : "").c_str(), 1);
   execv(program.c_str(), argv);
   return isa_error(fmt::format("TESSERA_ISA={}: cannot run {}: {}", wanted, program, std::strerror(errno)));
 }

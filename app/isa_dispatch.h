@@ -14,17 +14,6 @@ namespace tessera {
 // Does this CPU (and its operating system, for the AVX registers) run x86-64-v3 code?
 bool cpu_runs_x86_64_v3();
 
-// glibc (2.35 and later) backs malloc's large blocks with transparent huge pages when the
-// tunable glibc.malloc.hugetlb=1 is set, read only as a process starts: the hand-over sets it
-// for the program it starts (one started directly, as under valgrind, keeps 4 KiB pages). A
-// render reads its meshes, textures and BVH at random, and with 4 KiB pages most of those
-// reads also miss the TLB: DamagedHelmet and MetalRoughSpheresNoTextures render 3-5% faster
-// (docs/performance.md). The variable `tunables` with that added; one that names the tunable
-// already (glibc.malloc.hugetlb=0, say) is kept as it is.
-std::string tunables_with_huge_pages(const std::string& tunables);
-// Whether this process started with malloc asked for huge pages.
-bool malloc_asks_for_huge_pages();
-
 // The program built for `isa`, in the same directory as this one.
 std::string program_for_isa(const std::string& isa);
 

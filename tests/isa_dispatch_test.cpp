@@ -78,27 +78,6 @@ TEST(IsaDispatch, AskingForX8664V3WithoutItIsAnError) {
   EXPECT_NE(r.err.find("lacks AVX2"), std::string::npos) << r.err;
 }
 
-// The program handed over to starts with malloc's huge-page tunable added to the user's
-// (glibc's syntax: name=value, ':' between), which bench reports; one started without a
-// hand-over, or whose user chose (glibc.malloc.hugetlb=0), keeps 4 KiB pages.
-TEST(IsaDispatch, TheProgramHandedOverToRunsOnHugePages) {
-  if (!v3_runs_here()) GTEST_SKIP() << "no x86-64-v3 program or CPU here";
-  const std::string bench = " bench --spp 1 --width 8 --repeat 1 " + quote(test::scene_path("cornell-box/cornell-box.gltf"));
-  auto header = [](const test::CommandResult& r) { return r.out.substr(0, r.out.find('\n')); };
-  const auto handed_over = test::run_command("env -u TESSERA_ISA -u GLIBC_TUNABLES " + quote(test::tessera_exe()) + bench);
-  ASSERT_EQ(handed_over.exit_code, 0) << handed_over.err;
-  EXPECT_NE(header(handed_over).find("(x86-64-v3) bench"), std::string::npos) << handed_over.out;
-  EXPECT_NE(header(handed_over).find("malloc on huge pages"), std::string::npos) << handed_over.out;
-  const auto with_others = test::run_command("env -u TESSERA_ISA GLIBC_TUNABLES=glibc.malloc.arena_max=2 " +
-                                             quote(test::tessera_exe()) + bench);
-  EXPECT_NE(header(with_others).find("malloc on huge pages"), std::string::npos) << with_others.out;
-  const auto told = test::run_command("env -u TESSERA_ISA GLIBC_TUNABLES=glibc.malloc.hugetlb=0 " +
-                                      quote(test::tessera_exe()) + bench);
-  EXPECT_NE(header(told).find("malloc on 4 KiB pages"), std::string::npos) << told.out;
-  const auto direct = test::run_command("env -u GLIBC_TUNABLES " + quote(v3_program()) + bench);
-  EXPECT_NE(header(direct).find("malloc on 4 KiB pages"), std::string::npos) << direct.out;
-}
-
 // Renders `args` with each program: every layer the same bit for bit, each file naming its program.
 void expect_same_render(const std::string& name, const std::string& args) {
   const std::string dir = test::make_temp_dir("isa-" + name);
