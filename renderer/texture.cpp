@@ -4,6 +4,8 @@
 #include <cstring>
 #include <type_traits>
 
+#include <emmintrin.h>
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -56,13 +58,25 @@ const std::array<float, 256> kSrgbTable = [] {
   return t;
 }();
 
-// The linear RGBA of the texel stored at `at` (inlined into the lookups below).
-[[gnu::always_inline]] inline vec4 decode_texel(const TextureImage& image, std::size_t at) {
-  if (image.texels8.empty()) return image.texels_float[at];
+// The linear RGBA of the texel stored at `at`, in SSE2 (both builds: the same bits as scalar
+// code, one multiplication per value), inlined into the lookups below. A bilinear lookup's
+// four texels were 16 conversions and 32 multiplications one by one.
+[[gnu::always_inline]] inline __m128 decode_texel(const TextureImage& image, std::size_t at) {
+  if (image.texels8.empty()) return _mm_loadu_ps(&image.texels_float[at].x);
   const std::array<std::uint8_t, 4>& t = image.texels8[at];
   constexpr float kInv255 = 1.0f / 255.0f;
-  if (image.encoding == ColorEncoding::SRGB) return {kSrgbTable[t[0]], kSrgbTable[t[1]], kSrgbTable[t[2]], t[3] * kInv255};
-  return {t[0] * kInv255, t[1] * kInv255, t[2] * kInv255, t[3] * kInv255};
+  if (image.encoding == ColorEncoding::SRGB) return _mm_setr_ps(kSrgbTable[t[0]], kSrgbTable[t[1]], kSrgbTable[t[2]], t[3] * kInv255);
+  std::int32_t bytes;
+  std::memcpy(&bytes, t.data(), 4);
+  const __m128i zero = _mm_setzero_si128();
+  const __m128i words = _mm_unpacklo_epi16(_mm_unpacklo_epi8(_mm_cvtsi32_si128(bytes), zero), zero);
+  return _mm_mul_ps(_mm_cvtepi32_ps(words), _mm_set1_ps(kInv255));
+}
+
+vec4 to_vec4(__m128 v) {
+  vec4 out;
+  _mm_storeu_ps(&out.x, v);
+  return out;
 }
 
 vec2 transform_uv(const TextureTransform& t, vec2 uv) {
@@ -143,7 +157,7 @@ TextureImage make_texture_image(const Image& image, ColorEncoding encoding) {
   return out;
 }
 
-vec4 TextureImage::texel(int i, int j) const { return decode_texel(*this, index(i, j)); }
+vec4 TextureImage::texel(int i, int j) const { return to_vec4(decode_texel(*this, index(i, j))); }
 
 TexelQuad locate_texels(const TextureImage& image, const TextureRef& ref, vec2 uv) {
   TexelQuad q;
@@ -173,10 +187,12 @@ TexelQuad locate_texels(const TextureImage& image, const TextureRef& ref, vec2 u
 }
 
 vec4 read_texels(const TextureImage& image, FilterMode filter, const TexelQuad& q) {
-  if (filter == FilterMode::Nearest) return decode_texel(image, q.at[0]);
+  if (filter == FilterMode::Nearest) return to_vec4(decode_texel(image, q.at[0]));
   const float dx = q.dx, dy = q.dy;
-  return (1 - dx) * (1 - dy) * decode_texel(image, q.at[0]) + dx * (1 - dy) * decode_texel(image, q.at[1]) +
-         (1 - dx) * dy * decode_texel(image, q.at[2]) + dx * dy * decode_texel(image, q.at[3]);
+  const float weights[4] = {(1 - dx) * (1 - dy), dx * (1 - dy), (1 - dx) * dy, dx * dy};
+  __m128 sum = _mm_mul_ps(_mm_set1_ps(weights[0]), decode_texel(image, q.at[0]));
+  for (int k = 1; k < 4; ++k) sum = _mm_add_ps(sum, _mm_mul_ps(_mm_set1_ps(weights[k]), decode_texel(image, q.at[k])));
+  return to_vec4(sum);
 }
 
 void prefetch_texels(const TextureImage& image, const TexelQuad& q) {
