@@ -204,6 +204,20 @@ TEST(Texture, TexelBlocksStartOnCacheLines) {
   }
 }
 
+// A texture of 2 MiB or more starts on a huge page (2 MiB), so that the kernel can back
+// the whole pages inside it with huge pages; a smaller one on a cache line only. Its texels
+// read back as written either way.
+TEST(Texture, LargeTexturesStartOnHugePages) {
+  for (int size : {700, 725, 1024}) {  // 1.87 MiB, 2.02 MiB (728^2 stored), 4 MiB of 8-bit texels
+    const TextureImage bytes = make_texture_image(image8(size, size, 4, std::vector<std::uint8_t>(std::size_t(size) * size * 4, 7)),
+                                                  ColorEncoding::Linear);
+    const bool large = bytes.stored_bytes() >= (std::size_t{2} << 20);
+    EXPECT_EQ(large, size != 700) << size;
+    EXPECT_EQ(reinterpret_cast<std::uintptr_t>(bytes.texels8.data()) % (large ? std::size_t{2} << 20 : 64), 0u) << size;
+    for (int c = 0; c < 4; ++c) EXPECT_FLOAT_EQ(bytes.texel(size - 1, size - 1)[c], 7.0f / 255.0f) << size;
+  }
+}
+
 // Every channel count, at a size that is not a multiple of the 4x4 blocks: each texel read
 // back is its row-major source expanded to RGBA (grey to RGB, alpha 1 when absent).
 TEST(Texture, EveryChannelCountLandsEachTexelInItsBlock) {
