@@ -75,11 +75,6 @@ inline vec3 offset_ray_origin(const vec3& p, const vec3& n, float extent = 1.0f)
   return out;
 }
 
-// How far offset_ray_origin moves a point whose coordinates reach `magnitude` (1 or more).
-inline float ray_offset_at(float magnitude) {
-  return float(kRayOffsetSteps) * (std::nextafter(magnitude, INFINITY) - magnitude);
-}
-
 // Uniform point on the unit disk, concentric mapping (Shirley and Chiu 1997).
 inline vec2 sample_concentric_disk(const vec2& u) {
   const vec2 o = 2.0f * u - vec2(1.0f);

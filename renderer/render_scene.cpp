@@ -57,7 +57,7 @@ bool take_vertices(TriangleMesh& now, TriangleMesh& next) {
 
 bool RenderScene::update(SceneDescription& next) {
   if (next.materials.size() != description.materials.size() || next.images.size() != description.images.size() ||
-      !geometry->can_update(next))
+      render_origin(next) != origin || !geometry->can_update(next))
     return false;
   const auto start = std::chrono::steady_clock::now();
   move_to_render_frame(next, origin);

@@ -35,8 +35,8 @@ struct RenderScene {
   // moved to the render frame (render_origin.h).
   RenderScene(SceneDescription scene, const EnvironmentParams& env);
 
-  // The world point at the render frame's origin: 0 unless the scene is still and far from
-  // the origin for its size.
+  // The world point at the render frame's origin: 0 unless the scene is far from the origin
+  // for its size (render_origin.h).
   vec3 origin{0.0f};
   // A camera of the world (the description's as loaded, the command line's, the automatic
   // one), looking at this scene in its render frame.
@@ -64,7 +64,7 @@ struct RenderScene {
 
   // Makes this the scene `next` describes, when next is another frame of the same file and
   // variant (the same materials and images, which are not compared) with the structure built
-  // here (SceneGeometry::can_update): the vertex arrays, placements, cameras and lights that
+  // here (SceneGeometry::can_update) and the same render origin: the vertex arrays, placements, cameras and lights that
   // differ are taken from next, their BVHs rebuilt and the area lights found again, while the
   // textures, the environment and the BVHs of whatever did not change are kept. False, and
   // next untouched, otherwise: then build a new RenderScene.

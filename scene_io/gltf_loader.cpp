@@ -85,7 +85,6 @@ class Converter {
       result_.morph_meshes += std::any_of(m.primitives.begin(), m.primitives.end(),
                                           [](const tinygltf::Primitive& p) { return !p.targets.empty(); });
     traverse(roots);
-    check_precision();
     check_clipping();
     check_unused_objects(used);
     for (std::string& w : defects_.unused_warnings()) warnings_.push_back(std::move(w));
@@ -93,23 +92,6 @@ class Converter {
   }
 
  private:
-  // Floats far from the origin resolve a small scene coarsely: rays leave its surfaces
-  // ray_offset_at(distance) off, and where that is a visible share of it, its lighting is
-  // biased (the Cornell box 10,000 units out rendered 30% dark, 1,000 out 0.5% bright). A still
-  // scene is rendered about its own centre (renderer/render_origin.h); an animated one where
-  // it is, so that is worth a warning.
-  void check_precision() {
-    const Bounds3& b = out_.bounds;
-    if (b.empty() || !out_.animated) return;
-    const float distance = b.reach(), extent = b.longest_side();
-    const float offset = ray_offset_at(std::max(distance, 1.0f));
-    if (extent > 0.0f && offset > 0.01f * extent)
-      warnings_.push_back(fmt::format(
-          "the animated scene reaches {:g} from the origin, {:.0f} times its size: rays leave its surfaces {:.2g} off "
-          "({:.1f}% of its size), which biases its lighting; move it nearer the origin",
-          distance, distance / extent, offset, 100.0f * offset / extent));
-  }
-
   // A camera whose clipping planes leave out every surface shows only the background: znear
   // beyond the farthest corner of the scene's bounds, or zfar short of the nearest point (as a
   // scene scaled down under a camera with znear 0.01, which the node's scale does not scale).

@@ -450,38 +450,6 @@ TEST(GltfLoader, NonFinitePositionsAreRejected) {
   }
 }
 
-// A unit triangle 100 units up is resolved to 2e-3 of its size; 10,000 up, rays would leave
-// it 0.25 off (256 float steps of 9.8e-4): a warning naming the distance and the offset.
-// A still scene is rendered about its own centre (renderer/render_origin.h); an animated one
-// where it is, so it is warned about when floats hold it too coarsely there.
-TEST(GltfLoader, AnAnimatedSceneFarFromTheOriginForItsSizeIsWarnedAbout) {
-  auto placed_at = [](float y, bool animated) {
-    const std::vector<std::uint8_t> tri = triangle_gltf({0, 0, 0, 1, 0, 0, 0, 1, 0});
-    std::string json(tri.begin(), tri.end());
-    replace_first(json, R"([{"mesh":0}])", fmt::format(R"([{{"mesh":0,"translation":[0,{},0]}}])", y));
-    if (animated) {  // the same translation as a one-key animation, in a second buffer
-      const float key[] = {0, 0, y, 0};
-      std::vector<std::uint8_t> bin(sizeof key);
-      std::memcpy(bin.data(), key, sizeof key);
-      replace_first(json, R"("bufferViews":[{"buffer":0,"byteLength":36}])",
-                    R"("animations":[{"channels":[{"sampler":0,"target":{"node":0,"path":"translation"}}],)"
-                    R"("samplers":[{"input":1,"output":2}]}],"bufferViews":[{"buffer":0,"byteLength":36},)"
-                    R"({"buffer":1,"byteLength":16}])");
-      replace_first(json, R"("max":[1,1,0]})",
-                    R"("max":[1,1,0]},{"bufferView":1,"componentType":5126,"count":1,"type":"SCALAR","min":[0],"max":[0]},)"
-                    R"({"bufferView":1,"byteOffset":4,"componentType":5126,"count":1,"type":"VEC3"})");
-      json.replace(json.rfind("}]}"), 3, R"(},{"byteLength":16,"uri":"data:application/octet-stream;base64,)" + test::base64(bin) + R"("}]})");
-    }
-    return load_gltf_from_memory({json.begin(), json.end()}, "far.gltf", ".").warnings;
-  };
-  EXPECT_EQ(placed_at(100, true), std::vector<std::string>{});
-  EXPECT_EQ(placed_at(10000, false), std::vector<std::string>{});
-  EXPECT_EQ(placed_at(10000, true), std::vector<std::string>{
-                                        "the animated scene reaches 10001 from the origin, 10001 times its size: rays "
-                                        "leave its surfaces 0.25 off (25.0% of its size), which biases its lighting; "
-                                        "move it nearer the origin"});
-}
-
 // A camera 10 in front of a unit triangle: a znear beyond its farthest corner (10.1) or a
 // zfar short of its nearest point (10) leaves only the background, and says so.
 TEST(GltfLoader, ACameraWhoseClippingPlanesLeaveOutTheWholeSceneIsWarnedAbout) {

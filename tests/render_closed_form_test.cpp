@@ -184,9 +184,10 @@ TEST(RenderClosedForm, SingleSidedEmitterIsDarkFromBehind) {
 // A diffuse floor under a square emitter against the parallel-rectangle form factor
 // (test::floor_under_square_emitter), the whole scene `lift` above the origin. One bounce,
 // black background: direct light only, found by light sampling and BSDF sampling together (MIS).
-void expect_floor_under_square_emitter(float lift) {
+void expect_floor_under_square_emitter(float lift, bool animated = false) {
   const float a = 0.25f, h = 1.0f, le = 4.0f, albedo = 0.5f;
   SceneDescription scene;
+  scene.animated = animated;
   add_mesh(scene, test::make_quad({0, lift, 0}, {5, 0, 0}, {0, 0, -5}, add_material(scene, test::diffuse(vec3(albedo)))));
   add_mesh(scene, test::make_quad({0, lift + h, 0}, {a, 0, 0}, {0, 0, a}, add_material(scene, test::emitter(vec3(le)))));
   RenderSettings s;
@@ -219,6 +220,12 @@ TEST(RenderClosedForm, FloorUnderASquareEmitterFarFromTheOriginMatchesTheFormFac
 // (a quarter of the way to the light): it is rendered about its centre (render_origin.h).
 TEST(RenderClosedForm, FloorUnderASquareEmitterTenThousandUnitsUpMatchesTheFormFactor) {
   expect_floor_under_square_emitter(1e4f);
+}
+
+// The same as a frame of an animation: rendered about the nearest corner of its grid of
+// 64-unit cells (8 times its size, rounded up to a power of two), 16.5 units below it.
+TEST(RenderClosedForm, FloorUnderASquareEmitterTenThousandUnitsUpInAnAnimationMatchesTheFormFactor) {
+  expect_floor_under_square_emitter(1e4f, true);
 }
 
 // KHR_materials_diffuse_transmission: a sheet with no specular layer (pure Lambert), base

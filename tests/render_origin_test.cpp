@@ -1,5 +1,5 @@
-// The render frame (renderer/render_origin.h): a still scene far from the origin for its size
-// is rendered about its centre, with every placement, camera and light moved alike and the
+// The render frame (renderer/render_origin.h): a scene far from the origin for its size is
+// rendered about its centre (an animation's on a grid), with every placement, camera and light moved alike and the
 // camera's projections still of world coordinates; anything else stays where it is.
 #include <gtest/gtest.h>
 
@@ -31,13 +31,17 @@ SceneDescription quad_at(const vec3& at) {
   return scene;
 }
 
-TEST(RenderOrigin, OnlyAStillSceneFarForItsSizeMoves) {
+TEST(RenderOrigin, OnlyASceneFarForItsSizeMoves) {
   EXPECT_EQ(render_origin(quad_at({0, 0, 0})), vec3(0.0f));
   EXPECT_EQ(render_origin(quad_at({50, 0, 0})), vec3(0.0f));  // 50 sizes out: floats hold it finely
   EXPECT_EQ(render_origin(quad_at({1e4f, -2e4f, 5e3f})), vec3(1e4f, -2e4f, 5e3f));  // its centre
-  SceneDescription animated = quad_at({1e4f, 0, 0});
+  // An animation's frame: the corner nearest its centre of a grid of 8-unit cells (the quad is
+  // 1 across), so that nearby frames share it.
+  SceneDescription animated = quad_at({1e4f + 3.0f, -2e4f - 5.0f, 0});
   animated.animated = true;
-  EXPECT_EQ(render_origin(animated), vec3(0.0f));
+  EXPECT_EQ(render_origin(animated), vec3(1e4f, -2e4f - 8.0f, 0.0f));
+  animated.animated = false;
+  EXPECT_EQ(render_origin(animated), vec3(1e4f + 3.0f, -2e4f - 5.0f, 0.0f));
   EXPECT_EQ(render_origin(SceneDescription{}), vec3(0.0f));
   SceneDescription tiny;  // a tenth of a millimetre across, half a metre out: 5,000 sizes
   tiny.bounds = {vec3(0.5f), vec3(0.5001f)};

@@ -39,7 +39,7 @@ SceneDescription room_at(float t, float small_sphere_radius = 0.15f) {
 
 constexpr std::uint64_t kLampTriangles = 2, kTurningQuadTriangles = 2;
 
-FrameImage render(const RenderScene& scene) {
+FrameImage render(const RenderScene& scene, const vec3& at = vec3(0.0f)) {
   RenderSettings s;
   s.width = 40;
   s.height = 30;
@@ -48,7 +48,7 @@ FrameImage render(const RenderScene& scene) {
   s.threads = 2;
   s.seed = 7;
   s.aovs = {true, true, true};
-  const RenderCamera cam = make_camera(test::look_at({0, 0, 3}, {0, -0.2f, 0}, 45.0f), s.width, s.height, {});
+  const RenderCamera cam = scene.camera(test::look_at(at + vec3(0, 0, 3), at + vec3(0, -0.2f, 0), 45.0f), s.width, s.height, {});
   return render_frame(scene, cam, s).image;
 }
 
@@ -72,6 +72,32 @@ TEST(SceneUpdate, RebuildsOnlyWhatMovedAndRendersAsAFreshBuild) {
     test::expect_same_image(updated, render(fresh));
     EXPECT_FALSE(test::same_bits(updated.rgb, first.rgb));  // the update did change the image
   }
+}
+
+// The room moved to `at`, placements and bounds.
+SceneDescription room_at(float t, const vec3& at) {
+  SceneDescription d = room_at(t);
+  for (Instance& instance : d.instances) instance.object_to_world = translate(at) * instance.object_to_world;
+  d.bounds = {d.bounds.lo + at, d.bounds.hi + at};
+  return d;
+}
+
+// 10,000 units out the room (2 across) is rendered about the corner of its 16-unit grid
+// nearest its centre (renderer/render_origin.h): an update that leaves that corner the
+// nearest renders as a fresh build of the frame; one that moves the room nearer another
+// corner is refused (a fresh build, with that corner as its origin, follows).
+TEST(SceneUpdate, AFarAnimationKeepsItsRenderOriginUntilItNearsAnotherCorner) {
+  const vec3 far(1e4f, 0.0f, 0.0f), farther = far + vec3(9.0f, 0.0f, 0.0f);
+  RenderScene scene(room_at(0.0f, far), grey());
+  EXPECT_EQ(scene.origin, far);
+  SceneDescription next = room_at(0.5f, far);
+  ASSERT_TRUE(scene.update(next));
+  EXPECT_EQ(scene.origin, far);
+  const RenderScene fresh(room_at(0.5f, far), grey());
+  test::expect_same_image(render(scene, far), render(fresh, far));
+  SceneDescription away = room_at(0.5f, farther);
+  EXPECT_FALSE(scene.update(away));
+  EXPECT_EQ(RenderScene(room_at(0.5f, farther), grey()).origin, vec3(10016.0f, 0.0f, 0.0f));
 }
 
 TEST(SceneUpdate, AnInstancedMeshThatChangesShapeIsRebuiltOnce) {
