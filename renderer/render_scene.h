@@ -64,10 +64,11 @@ struct RenderScene {
 
   // Makes this the scene `next` describes, when next is another frame of the same file and
   // variant (the same materials and images, which are not compared) with the structure built
-  // here (SceneGeometry::can_update) and the same render origin: the vertex arrays, placements, cameras and lights that
-  // differ are taken from next, their BVHs rebuilt and the area lights found again, while the
-  // textures, the environment and the BVHs of whatever did not change are kept. False, and
-  // next untouched, otherwise: then build a new RenderScene.
+  // here (SceneGeometry::can_update) and the same render origin: the vertex arrays,
+  // placements, cameras and lights that differ are taken from next, their BVHs rebuilt and
+  // the area lights found again, while the textures, the environment and the BVHs of whatever
+  // did not change are kept. False, and next untouched, otherwise: then build a new
+  // RenderScene.
   bool update(SceneDescription& next);
   std::uint64_t rebuilt_triangles = 0;  // by the last update
 };

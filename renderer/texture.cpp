@@ -65,7 +65,8 @@ const std::array<float, 256> kSrgbTable = [] {
   if (image.texels8.empty()) return _mm_loadu_ps(&image.texels_float[at].x);
   const std::array<std::uint8_t, 4>& t = image.texels8[at];
   constexpr float kInv255 = 1.0f / 255.0f;
-  if (image.encoding == ColorEncoding::SRGB) return _mm_setr_ps(kSrgbTable[t[0]], kSrgbTable[t[1]], kSrgbTable[t[2]], t[3] * kInv255);
+  if (image.encoding == ColorEncoding::SRGB)
+    return _mm_setr_ps(kSrgbTable[t[0]], kSrgbTable[t[1]], kSrgbTable[t[2]], t[3] * kInv255);
   std::int32_t bytes;
   std::memcpy(&bytes, t.data(), 4);
   const __m128i zero = _mm_setzero_si128();

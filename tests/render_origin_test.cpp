@@ -1,6 +1,7 @@
 // The render frame (renderer/render_origin.h): a scene far from the origin for its size is
-// rendered about its centre (an animation's on a grid), with every placement, camera and light moved alike and the
-// camera's projections still of world coordinates; anything else stays where it is.
+// rendered about its centre (an animation's frame about a corner of a grid), with every
+// placement, camera and light moved alike and the camera's projections still of world
+// coordinates; anything else stays where it is.
 #include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_transform.hpp>

@@ -48,7 +48,8 @@ FrameImage render(const RenderScene& scene, const vec3& at = vec3(0.0f)) {
   s.threads = 2;
   s.seed = 7;
   s.aovs = {true, true, true};
-  const RenderCamera cam = scene.camera(test::look_at(at + vec3(0, 0, 3), at + vec3(0, -0.2f, 0), 45.0f), s.width, s.height, {});
+  const Camera look = test::look_at(at + vec3(0, 0, 3), at + vec3(0, -0.2f, 0), 45.0f);
+  const RenderCamera cam = scene.camera(look, s.width, s.height, {});
   return render_frame(scene, cam, s).image;
 }
 
