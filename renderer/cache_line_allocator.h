@@ -5,9 +5,10 @@
 // An array of 2 MiB or more starts on a 2 MiB boundary and asks the kernel for transparent
 // huge pages (which it gives, where configured as `madvise` or `always`, to the whole 2 MiB
 // pages inside it): a texture is read at random, and with 4 KiB pages its lookups also missed
-// the TLB (DamagedHelmet, whose four 2048x2048 maps are 64 MiB, renders 1% faster; where
-// fresh huge pages are slow to touch, as on this project's virtual machine, its set-up takes
-// a few ms longer: docs/performance.md).
+// the TLB (DamagedHelmet, whose four 2048x2048 maps are 64 MiB, renders 1-2% faster; where
+// fresh huge pages are slow to touch, as on this project's virtual machine, converting the
+// maps takes up to as much longer, a cost that does not grow with the render:
+// docs/performance.md).
 #pragma once
 
 #include <cstddef>
