@@ -17,9 +17,9 @@ void move_all(glm::mat4& m, std::vector<glm::mat4>& steps, const vec3& origin) {
 vec3 render_origin(const SceneDescription& scene) {
   const Bounds3& b = scene.bounds;
   if (b.empty() || !(b.reach() > kFarForItsSize * b.longest_side())) return vec3(0.0f);
+  if (!scene.animated) return b.center();
   const float cell = std::exp2(std::ceil(std::log2(kAnimatedCell * b.longest_side())));
-  if (!scene.animated || !(cell > 0.0f) || !std::isfinite(cell)) return b.center();
-  return glm::round(b.center() / cell) * cell;
+  return cell > 0.0f && std::isfinite(cell) ? glm::round(b.center() / cell) * cell : b.center();
 }
 
 void move_to_render_frame(SceneDescription& scene, const vec3& origin) {

@@ -29,7 +29,7 @@ struct Bounds3 {
   glm::vec3 center() const { return 0.5f * (lo + hi); }
   glm::vec3 diagonal() const { return hi - lo; }
   // How far from the origin it reaches (its largest |coordinate|) and its longest side: how
-  // finely floats hold it (render_origin.h, the loader's warning).
+  // finely floats hold it (render_origin.h).
   float reach() const {
     const glm::vec3 r = glm::max(glm::abs(lo), glm::abs(hi));
     return std::max(r.x, std::max(r.y, r.z));
