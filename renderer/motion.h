@@ -13,6 +13,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "renderer/math.h"
+#include "renderer/scene/scene.h"
 
 namespace tessera {
 
@@ -39,9 +40,9 @@ T lerp_step(const T& a, const T& b, float fraction) {
 // One vertex attribute at a time: `step0` is step 0, `later` steps 1 .. steps - 1 (the
 // layout of TriangleMesh's motion arrays).
 template <typename T>
-T attribute_at(const std::vector<T>& step0, const std::vector<std::vector<T>>& later, std::uint32_t vertex,
+T attribute_at(const MeshArray<T>& step0, const std::vector<MeshArray<T>>& later, std::uint32_t vertex,
                MotionSegment seg) {
-  const std::vector<T>& a = seg.step == 0 ? step0 : later[seg.step - 1];
+  const MeshArray<T>& a = seg.step == 0 ? step0 : later[seg.step - 1];
   return lerp_step(a[vertex], later[seg.step][vertex], seg.fraction);
 }
 

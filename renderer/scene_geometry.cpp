@@ -12,24 +12,39 @@
 namespace tessera {
 namespace {
 
-// Bakes a mesh into world space, each motion step too when it deforms (else its motion
-// arrays are left behind). A mirroring transform reverses the winding so that the front face
-// (counter-clockwise in the file) stays the front face.
-TriangleMesh to_world_space(const TriangleMesh& src, const glm::mat4& m, bool deforms) {
-  TriangleMesh out = src;
+// An empty mesh whose arrays take their memory from `memory`.
+TriangleMesh mesh_in(std::pmr::memory_resource* memory) {
+  return TriangleMesh{MeshArray<vec3>(memory), MeshArray<vec3>(memory), MeshArray<vec4>(memory),
+                      MeshArray<vec2>(memory), MeshArray<vec2>(memory), MeshArray<vec4>(memory),
+                      MeshArray<std::uint32_t>(memory), -1, {}, {}, {}};
+}
+
+// The bytes of a mesh's arrays, each from a 64-byte boundary (its own memory's alignment).
+std::size_t array_bytes(const TriangleMesh& m) {
+  auto bytes = [](const auto& a, std::size_t more = 0) { return ((a.size() + more) * sizeof(a[0]) + 63) / 64 * 64; };
+  return bytes(m.positions, 1) + bytes(m.normals) + bytes(m.tangents) + bytes(m.texcoords0) + bytes(m.texcoords1) +
+         bytes(m.colors) + bytes(m.indices);
+}
+
+// Bakes a mesh into world space in `out` (whose arrays keep their memory), each motion step
+// too when it deforms (else its motion arrays are left behind). A mirroring transform
+// reverses the winding so that the front face (counter-clockwise in the file) stays the front face.
+void to_world_space(const TriangleMesh& src, const glm::mat4& m, bool deforms, TriangleMesh& out) {
+  out.positions.reserve(src.positions.size() + 1);  // the padding Embree reads past the last vertex
+  out = src;  // a polymorphic array's copy assignment keeps the target's memory (and capacity)
   if (!deforms) {
     out.motion_positions = {};
     out.motion_normals = {};
     out.motion_tangents = {};
   }
   const glm::mat3 nm = glm::transpose(glm::inverse(glm::mat3(m)));
-  auto points = [&](std::vector<vec3>& ps) {
+  auto points = [&](MeshArray<vec3>& ps) {
     for (vec3& p : ps) p = vec3(m * vec4(p, 1.0f));
   };
-  auto normals = [&](std::vector<vec3>& ns) {
+  auto normals = [&](MeshArray<vec3>& ns) {
     for (vec3& n : ns) n = nm * n;
   };
-  auto tangents = [&](std::vector<vec4>& ts) {
+  auto tangents = [&](MeshArray<vec4>& ts) {
     for (vec4& t : ts) t = vec4(glm::mat3(m) * vec3(t), t.w);
   };
   points(out.positions);
@@ -40,7 +55,6 @@ TriangleMesh to_world_space(const TriangleMesh& src, const glm::mat4& m, bool de
   for (auto& step : out.motion_tangents) tangents(step);
   if (glm::determinant(glm::mat3(m)) < 0.0f)
     for (std::size_t i = 0; i + 2 < out.indices.size(); i += 3) std::swap(out.indices[i + 1], out.indices[i + 2]);
-  return out;
 }
 
 // A transform in Embree's parts. Consecutive steps' quaternions are kept in one hemisphere
@@ -61,8 +75,8 @@ RTCQuaternionDecomposition embree_parts(const glm::mat4& m, glm::quat& previous)
 
 // Whether any later motion step differs from step 0.
 template <typename T>
-bool steps_differ(const std::vector<T>& step0, const std::vector<std::vector<T>>& later) {
-  return std::any_of(later.begin(), later.end(), [&](const std::vector<T>& step) { return step != step0; });
+bool steps_differ(const MeshArray<T>& step0, const std::vector<MeshArray<T>>& later) {
+  return std::any_of(later.begin(), later.end(), [&](const MeshArray<T>& step) { return step != step0; });
 }
 
 // A tangent frame from the triangle's UV parameterisation, for normal maps on meshes without
@@ -92,13 +106,13 @@ float ray_hash(const float* values, int count, std::uint32_t prim) {
 }
 
 template <typename T>
-T interpolate(const std::vector<T>& values, const std::uint32_t* idx, float u, float v) {
+T interpolate(const MeshArray<T>& values, const std::uint32_t* idx, float u, float v) {
   return (1.0f - u - v) * values[idx[0]] + u * values[idx[1]] + v * values[idx[2]];
 }
 
 // The same for an attribute with motion steps, at a time between two of them.
 template <typename T>
-T interpolate(const std::vector<T>& step0, const std::vector<std::vector<T>>& later, const std::uint32_t* idx,
+T interpolate(const MeshArray<T>& step0, const std::vector<MeshArray<T>>& later, const std::uint32_t* idx,
               float u, float v, MotionSegment seg) {
   return (1.0f - u - v) * attribute_at(step0, later, idx[0], seg) + u * attribute_at(step0, later, idx[1], seg) +
          v * attribute_at(step0, later, idx[2], seg);
@@ -125,8 +139,16 @@ SceneGeometry::SceneGeometry(const SceneDescription& scene, RTCDevice device, co
   auto baked = [&](const std::vector<const Instance*>& placements) {
     return placements.size() == 1 && !instance_moves(*placements[0]);  // a moving one is an instance
   };
-  for (const auto& [mesh, placements] : by_mesh) baked_count += baked(placements) ? scene.meshes[mesh].primitives.size() : 0;
+  std::size_t baked_bytes = 0;
+  for (const auto& [mesh, placements] : by_mesh) {
+    if (!baked(placements)) continue;
+    baked_count += scene.meshes[mesh].primitives.size();
+    for (const TriangleMesh& prim : scene.meshes[mesh].primitives) baked_bytes += array_bytes(prim);
+  }
   baked_.reserve(baked_count);  // Placement keeps pointers into baked_
+  baked_block_.resize(baked_bytes);
+  if (baked_bytes > 0) baked_memory_.emplace(baked_block_.data(), baked_block_.size(), std::pmr::new_delete_resource());
+  else baked_memory_.emplace(std::pmr::new_delete_resource());
   prototypes_.assign(scene.meshes.size(), nullptr);
   for (const auto& [mesh, placements] : by_mesh) {
     std::uint64_t tris = 0;
@@ -216,8 +238,8 @@ std::uint64_t SceneGeometry::update(const std::vector<std::vector<char>>& change
     const BakedSource& src = baked_sources_[k];
     if (!changed_primitives[src.mesh][src.primitive] && !changed_instances[src.instance]) continue;
     const bool deforms = deforms_[src.mesh][src.primitive];
-    baked_[k] = to_world_space(scene_.meshes[src.mesh].primitives[src.primitive],
-                               scene_.instances[src.instance].object_to_world, deforms);
+    to_world_space(scene_.meshes[src.mesh].primitives[src.primitive], scene_.instances[src.instance].object_to_world,
+                   deforms, baked_[k]);  // the same layout: in the arrays it has
     RTCGeometry geom = rtcGetGeometry(top_, src.geom);
     fill_buffers(geom, baked_[k], vertex_steps(baked_[k], deforms));
     rtcCommitGeometry(geom);
@@ -263,22 +285,31 @@ bool SceneGeometry::mesh_deforms(const TriangleMesh& mesh) const {
                         steps_differ(mesh.tangents, mesh.motion_tangents));
 }
 
-unsigned SceneGeometry::attach_triangles(RTCScene target, const TriangleMesh& mesh, bool deforms) {
+unsigned SceneGeometry::attach_triangles(RTCScene target, const TriangleMesh& mesh, bool deforms, bool baked) {
   RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
   const unsigned steps = vertex_steps(mesh, deforms);
   if (steps > 1) rtcSetGeometryTimeStepCount(geom, steps);
-  // Embree may read 16 bytes at the last vertex: its own buffers are padded for that.
-  bool allocated = true;
-  for (unsigned k = 0; k < steps; ++k)
-    allocated = allocated && rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, k, RTC_FORMAT_FLOAT3,
-                                                     3 * sizeof(float), mesh.positions.size());
-  allocated = allocated && rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                   3 * sizeof(std::uint32_t), mesh.triangle_count());
-  if (!allocated) {
-    rtcReleaseGeometry(geom);
-    throw std::runtime_error("Embree could not allocate geometry buffers (out of memory?)");
+  if (baked && steps == 1) {
+    // A baked copy is ours to keep as it is: Embree reads it where it lies (padded by a vertex
+    // for Embree's 16-byte loads: to_world_space) instead of a copy of its own.
+    rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, mesh.positions.data(), 0,
+                               sizeof(vec3), mesh.positions.size());
+    rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, mesh.indices.data(), 0,
+                               3 * sizeof(std::uint32_t), mesh.triangle_count());
+  } else {
+    // Embree may read 16 bytes at the last vertex: its own buffers are padded for that.
+    bool allocated = true;
+    for (unsigned k = 0; k < steps; ++k)
+      allocated = allocated && rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, k, RTC_FORMAT_FLOAT3,
+                                                       3 * sizeof(float), mesh.positions.size());
+    allocated = allocated && rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                     3 * sizeof(std::uint32_t), mesh.triangle_count());
+    if (!allocated) {
+      rtcReleaseGeometry(geom);
+      throw std::runtime_error("Embree could not allocate geometry buffers (out of memory?)");
+    }
+    fill_buffers(geom, mesh, steps);
   }
-  fill_buffers(geom, mesh, steps);
   install_filters(geom, mesh);
   rtcCommitGeometry(geom);
   const unsigned id = rtcAttachGeometry(target, geom);
@@ -292,16 +323,17 @@ unsigned SceneGeometry::vertex_steps(const TriangleMesh& mesh, bool deforms) con
 }
 
 void SceneGeometry::fill_buffers(RTCGeometry geom, const TriangleMesh& mesh, unsigned steps) const {
+  auto fill = [&](RTCBufferType type, unsigned slot, const void* data, std::size_t bytes) {
+    void* buffer = rtcGetGeometryBufferData(geom, type, slot);
+    if (buffer != data) std::memcpy(buffer, data, bytes);  // else shared: it is the data
+    rtcUpdateGeometryBuffer(geom, type, slot);
+  };
   for (unsigned k = 0; k < steps; ++k) {
-    const std::vector<vec3>& positions = k == 0 ? mesh.positions : mesh.motion_positions[k - 1];
-    std::memcpy(rtcGetGeometryBufferData(geom, RTC_BUFFER_TYPE_VERTEX, k), positions.data(),
-                positions.size() * sizeof(vec3));
-    rtcUpdateGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, k);
+    const MeshArray<vec3>& positions = k == 0 ? mesh.positions : mesh.motion_positions[k - 1];
+    fill(RTC_BUFFER_TYPE_VERTEX, k, positions.data(), positions.size() * sizeof(vec3));
   }
   // Indices too: a placement that turns mirroring reverses the winding of a baked copy.
-  std::memcpy(rtcGetGeometryBufferData(geom, RTC_BUFFER_TYPE_INDEX, 0), mesh.indices.data(),
-              mesh.indices.size() * sizeof(std::uint32_t));
-  rtcUpdateGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0);
+  fill(RTC_BUFFER_TYPE_INDEX, 0, mesh.indices.data(), mesh.indices.size() * sizeof(std::uint32_t));
 }
 
 void SceneGeometry::set_instance_transform(RTCGeometry geom, const Instance& inst, bool moving) const {
@@ -432,8 +464,9 @@ void SceneGeometry::add_baked(int mesh_index, int instance) {
   const Mesh& mesh = scene_.meshes[mesh_index];
   const std::vector<char>& deforms = deforms_[mesh_index];
   for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
-    baked_.push_back(to_world_space(mesh.primitives[p], scene_.instances[instance].object_to_world, deforms[p]));
-    const unsigned id = attach_triangles(top_, baked_.back(), deforms[p]);
+    baked_.push_back(mesh_in(&*baked_memory_));
+    to_world_space(mesh.primitives[p], scene_.instances[instance].object_to_world, deforms[p], baked_.back());
+    const unsigned id = attach_triangles(top_, baked_.back(), deforms[p], true);
     baked_sources_.push_back({mesh_index, static_cast<int>(p), instance, id});
     top_geometry_.resize(id + 1, Placement{nullptr});
     top_is_instance_.resize(id + 1, false);
@@ -449,7 +482,7 @@ void SceneGeometry::add_instanced(int mesh_index, const std::vector<const Instan
   rtcSetSceneBuildQuality(proto, RTC_BUILD_QUALITY_HIGH);
   const auto& prims = scene_.meshes[mesh_index].primitives;
   for (std::size_t p = 0; p < prims.size(); ++p) {
-    attach_triangles(proto, prims[p], deforms_[mesh_index][p]);
+    attach_triangles(proto, prims[p], deforms_[mesh_index][p], false);
     moves_ = moves_ || deforms_[mesh_index][p];
   }
   rtcCommitScene(proto);

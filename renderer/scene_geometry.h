@@ -14,10 +14,14 @@
 
 #include <embree3/rtcore.h>
 
+#include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <memory_resource>
+#include <optional>
 #include <vector>
 
+#include "renderer/cache_line_allocator.h"
 #include "renderer/ray.h"
 #include "renderer/scene/scene.h"
 
@@ -182,7 +186,8 @@ class SceneGeometry {
   bool mesh_deforms(const TriangleMesh& mesh) const;
   void add_baked(int mesh_index, int instance);
   void add_instanced(int mesh_index, const std::vector<const Instance*>& placements);
-  unsigned attach_triangles(RTCScene target, const TriangleMesh& mesh, bool deforms);
+  // `baked`: one of baked_, which Embree then reads in place when it does not deform.
+  unsigned attach_triangles(RTCScene target, const TriangleMesh& mesh, bool deforms, bool baked);
   unsigned vertex_steps(const TriangleMesh& mesh, bool deforms) const;  // Embree's vertex buffers
   // Copies the mesh's positions (every motion step Embree has) and indices into geom's buffers.
   void fill_buffers(RTCGeometry geom, const TriangleMesh& mesh, unsigned steps) const;
@@ -205,7 +210,12 @@ class SceneGeometry {
   std::vector<std::unique_ptr<FilterView>> filter_views_;
   RTCScene top_ = nullptr;
   std::vector<RTCScene> prototypes_;  // one per instanced mesh, indexed like scene_.meshes
-  std::vector<TriangleMesh> baked_;  // world-space copies of meshes placed once
+  // World-space copies of meshes placed once, their arrays side by side in one block (on
+  // huge pages from 2 MiB: surface() reads them at random, and with 4 KiB pages a million
+  // triangles' also missed the TLB; docs/performance.md).
+  std::vector<std::byte, CacheLineAllocator<std::byte>> baked_block_;
+  std::optional<std::pmr::monotonic_buffer_resource> baked_memory_;  // hands out baked_block_, then the heap
+  std::vector<TriangleMesh> baked_;
   struct BakedSource {
     int mesh, primitive, instance;
     unsigned geom;  // its top-level id

@@ -16,7 +16,7 @@ namespace {
 Bounds3 own_bounds(const TriangleMesh& mesh) {
   Bounds3 b;
   for (const vec3& p : mesh.positions) b.extend(p);
-  for (const std::vector<vec3>& step : mesh.motion_positions)
+  for (const MeshArray<vec3>& step : mesh.motion_positions)
     for (const vec3& p : step) b.extend(p);
   return b;
 }

@@ -9,17 +9,17 @@ namespace tessera {
 namespace {
 
 template <typename Vec, int N>
-std::vector<Vec> to_vectors(const std::vector<float>& flat) {
-  std::vector<Vec> out(flat.size() / N);
+MeshArray<Vec> to_vectors(const std::vector<float>& flat) {
+  MeshArray<Vec> out(flat.size() / N);
   for (std::size_t i = 0; i < out.size(); ++i)
     for (int c = 0; c < N; ++c) out[i][c] = flat[i * N + c];
   return out;
 }
 
 // Triangle list from the primitive's (possibly implicit) indices and topology mode.
-std::vector<std::uint32_t> triangulate(const std::vector<std::uint32_t>& idx, int mode,
-                                       const std::string& what, std::vector<std::string>& warnings) {
-  std::vector<std::uint32_t> tris;
+MeshArray<std::uint32_t> triangulate(const std::vector<std::uint32_t>& idx, int mode, const std::string& what,
+                                     std::vector<std::string>& warnings) {
+  MeshArray<std::uint32_t> tris;
   if (mode == TINYGLTF_MODE_TRIANGLES) {
     const std::size_t usable = idx.size() - idx.size() % 3;
     if (usable != idx.size())
@@ -93,7 +93,7 @@ std::optional<TriangleMesh> convert_primitive(const AccessorReader& reader,
     } else {
       mesh.colors = to_vectors<glm::vec4, 4>(reader.floats(a, 4, "COLOR_0 of " + what));
     }
-    sized(std::vector<glm::vec4>(mesh.colors), a, "COLOR_0");
+    sized(MeshArray<glm::vec4>(mesh.colors), a, "COLOR_0");
   }
 
   std::vector<std::uint32_t> idx;

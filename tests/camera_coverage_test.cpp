@@ -162,7 +162,7 @@ SceneDescription moving_shot() {
   d.instances.back().motion = {translate(0.2f, 0.3f, 0) * glm::rotate(glm::mat4(1.0f), 2.5f, vec3(0, 0, 1)),
                                translate(0.3f, 0.4f, 0) * glm::rotate(glm::mat4(1.0f), 5.0f, vec3(0, 0, 1))};
   TriangleMesh quad = test::make_quad({-1.2f, 0.6f, -1}, {0.3f, 0.1f, 0}, {0, 0.3f, 0.2f}, grey);
-  std::vector<vec3> bent = quad.positions;
+  MeshArray<vec3> bent = quad.positions;
   for (vec3& v : bent) v.y += 0.4f * (v.x + 1.2f);
   quad.motion_positions = {bent, bent};
   test::add_mesh(d, quad, {glm::mat4(1.0f), translate(0, 0, 0)});  // placed twice: an instanced mesh

@@ -47,8 +47,8 @@ TEST(GltfConformance, IndicesWithoutBufferViewAreZerosBarSparseOnes) {
   const GltfLoadResult r = load("indices_without_bufferview.gltf");
   const Mesh& mesh = r.scene.meshes.at(0);
   ASSERT_EQ(mesh.primitives.size(), 2u);
-  EXPECT_EQ(mesh.primitives[0].indices, (std::vector<std::uint32_t>{0, 0, 0}));  // all zeros
-  EXPECT_EQ(mesh.primitives[1].indices, (std::vector<std::uint32_t>{0, 1, 2}));  // sparse 1, 2 at 1, 2
+  EXPECT_EQ(mesh.primitives[0].indices, (MeshArray<std::uint32_t>{0, 0, 0}));  // all zeros
+  EXPECT_EQ(mesh.primitives[1].indices, (MeshArray<std::uint32_t>{0, 1, 2}));  // sparse 1, 2 at 1, 2
 }
 
 TEST(GltfConformance, UnusedObjectsOfEveryKindLoadInvalidOnesWithAWarning) {
@@ -141,7 +141,7 @@ TEST(GltfConformance, PercentEncodedDataUrisAreDecoded) {
   const GltfLoadResult r = load("percent_encoded_data_uris.gltf");
   const Mesh& mesh = r.scene.meshes.at(0);
   ASSERT_EQ(mesh.primitives.size(), 2u);
-  const std::vector<glm::vec3> triangle = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  const MeshArray<glm::vec3> triangle = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
   EXPECT_EQ(mesh.primitives[0].positions, triangle);
   EXPECT_EQ(mesh.primitives[1].positions, triangle);
   EXPECT_EQ(r.warnings, std::vector<std::string>{});

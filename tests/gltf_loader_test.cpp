@@ -43,11 +43,11 @@ std::uint64_t instanced_triangles(const SceneDescription& s) {
   return n;
 }
 
-template <typename Vec>
-std::vector<float> flat(const std::vector<Vec>& v) {
+template <typename Array>
+std::vector<float> flat(const Array& v) {
   std::vector<float> out;
-  for (const Vec& x : v)
-    for (int c = 0; c < Vec::length(); ++c) out.push_back(x[c]);
+  for (const auto& x : v)
+    for (int c = 0; c < x.length(); ++c) out.push_back(x[c]);
   return out;
 }
 
@@ -181,7 +181,7 @@ TEST(GltfLoader, SparseAccessorSubstitutesPositions) {
   const std::vector<float> expected = {0, 0, 0, 1, 0, 0, 2, 0, 0, 3, 0, 0, 4, 0, 0, 5, 0, 0, 6, 0, 0,
                                        0, 1, 0, 1, 2, 0, 2, 1, 0, 3, 3, 0, 4, 1, 0, 5, 4, 0, 6, 1, 0};
   EXPECT_EQ(flat(m.positions), expected);
-  const std::vector<std::uint32_t> indices = {0, 8, 7, 0, 1, 8, 1, 9, 8, 1, 2, 9, 2, 10, 9, 2, 3, 10,
+  const MeshArray<std::uint32_t> indices = {0, 8, 7, 0, 1, 8, 1, 9, 8, 1, 2, 9, 2, 10, 9, 2, 3, 10,
                                               3, 11, 10, 3, 4, 11, 4, 12, 11, 4, 5, 12, 5, 13, 12, 5, 6, 13};
   EXPECT_EQ(m.indices, indices);
 }
@@ -199,10 +199,10 @@ TEST(GltfLoader, StripsAndFansBecomeTrianglesPointsAndLinesAreSkippedWithOneWarn
   EXPECT_EQ(tris->primitives.at(0).triangle_count(), 6u);  // 18 indices
   // Strip indices 2 3 1 4 6 5: triangle i = {v_i, v_(i+1+i%2), v_(i+2-i%2)} (glTF spec).
   EXPECT_EQ(strip->primitives.at(0).indices,
-            (std::vector<std::uint32_t>{2, 3, 1, 3, 4, 1, 1, 4, 6, 4, 5, 6}));
+            (MeshArray<std::uint32_t>{2, 3, 1, 3, 4, 1, 1, 4, 6, 4, 5, 6}));
   // Fan indices 0 1 2 3 4 5 6 1: triangle i = {v_(i+1), v_(i+2), v_0}.
   EXPECT_EQ(fan->primitives.at(0).indices,
-            (std::vector<std::uint32_t>{1, 2, 0, 2, 3, 0, 3, 4, 0, 4, 5, 0, 5, 6, 0, 6, 1, 0}));
+            (MeshArray<std::uint32_t>{1, 2, 0, 2, 3, 0, 3, 4, 0, 4, 5, 0, 5, 6, 0, 6, 1, 0}));
 }
 
 TEST(GltfLoader, MultipleScenesDefaultAndChosenByIndex) {
@@ -324,7 +324,7 @@ TEST(GltfLoader, TriangleWithoutIndicesUsesVertexOrder) {
   ASSERT_EQ(s.meshes.size(), 1u);
   const TriangleMesh& m = s.meshes[0].primitives.at(0);
   EXPECT_EQ(flat(m.positions), (std::vector<float>{0, 0, 0, 1, 0, 0, 0, 1, 0}));
-  EXPECT_EQ(m.indices, (std::vector<std::uint32_t>{0, 1, 2}));
+  EXPECT_EQ(m.indices, (MeshArray<std::uint32_t>{0, 1, 2}));
 }
 
 TEST(GltfLoader, DataUriBuffer) {
@@ -333,7 +333,7 @@ TEST(GltfLoader, DataUriBuffer) {
   ASSERT_EQ(s.meshes.size(), 1u);
   const TriangleMesh& m = s.meshes[0].primitives.at(0);
   EXPECT_EQ(flat(m.positions), (std::vector<float>{-1, 0.5, 2, 3, 0.5, 2, -1, 4.5, 2}));
-  EXPECT_EQ(m.indices, (std::vector<std::uint32_t>{0, 1, 2}));
+  EXPECT_EQ(m.indices, (MeshArray<std::uint32_t>{0, 1, 2}));
   EXPECT_EQ(s.bounds.lo, glm::vec3(-1, 0.5, 2));
   EXPECT_EQ(s.bounds.hi, glm::vec3(3, 4.5, 2));
 }
@@ -396,10 +396,10 @@ TEST_F(GltfLoaderComponentTypes, QuantizedSignedAndUnnormalizedIntegers) {
 }
 
 TEST_F(GltfLoaderComponentTypes, IndicesOfEveryUnsignedType) {
-  EXPECT_EQ(prim(0).indices, (std::vector<std::uint32_t>{0, 1, 2}));  // UNSIGNED_BYTE
-  EXPECT_EQ(prim(1).indices, (std::vector<std::uint32_t>{2, 1, 0}));  // UNSIGNED_SHORT
-  EXPECT_EQ(prim(2).indices, (std::vector<std::uint32_t>{0, 2, 1}));  // UNSIGNED_INT
-  EXPECT_EQ(prim(3).indices, (std::vector<std::uint32_t>{0, 1, 2}));  // none: vertex order
+  EXPECT_EQ(prim(0).indices, (MeshArray<std::uint32_t>{0, 1, 2}));  // UNSIGNED_BYTE
+  EXPECT_EQ(prim(1).indices, (MeshArray<std::uint32_t>{2, 1, 0}));  // UNSIGNED_SHORT
+  EXPECT_EQ(prim(2).indices, (MeshArray<std::uint32_t>{0, 2, 1}));  // UNSIGNED_INT
+  EXPECT_EQ(prim(3).indices, (MeshArray<std::uint32_t>{0, 1, 2}));  // none: vertex order
   // Bounds span every primitive: x -3 .. 32767, y -32768 .. 7, z 0 .. 100.
   EXPECT_EQ(scene_->bounds.lo, glm::vec3(-3, -32768, 0));
   EXPECT_EQ(scene_->bounds.hi, glm::vec3(32767, 7, 100));

@@ -96,7 +96,7 @@ SceneDescription moving_quads() {
                                glm::translate(glm::mat4(1.0f), vec3(0, 0, -1)) * rotate_z(90.0f)};
   TriangleMesh deforming = test::make_quad({0, 0, -3}, {3, 0, 0}, {0, 3, 0}, m);
   for (int k = 1; k < 3; ++k) {
-    std::vector<vec3> p = deforming.positions, n = deforming.normals;
+    MeshArray<vec3> p = deforming.positions, n = deforming.normals;
     for (vec3& v : p) v.z += 0.5f * k * (v.x + 3.0f) / 6.0f;  // tilts about the left edge
     for (vec3& v : n) v = glm::normalize(vec3(-0.5f * k / 6.0f, 0, 1));
     deforming.motion_positions.push_back(p);

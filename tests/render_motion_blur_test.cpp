@@ -76,7 +76,7 @@ SceneDescription deforming_mesh(float start, float dist) {
   SceneDescription d = quad_scene(start, 3);
   TriangleMesh& m = d.meshes[0].primitives[0];
   for (float f : {0.5f, 1.0f}) {
-    std::vector<vec3> p = m.positions;
+    MeshArray<vec3> p = m.positions;
     for (vec3& v : p) v.x += f * dist;
     m.motion_positions.push_back(p);
   }
@@ -300,7 +300,7 @@ SceneDescription lit_floor(bool grows) {
   const int light = test::add_material(d, test::emitter(vec3(kLe)));
   if (grows) {
     TriangleMesh m = test::make_quad({0, kHeight, 0}, {kHalf, 0, 0}, {0, 0, kHalf}, light);
-    std::vector<vec3> p = m.positions;
+    MeshArray<vec3> p = m.positions;
     for (vec3& v : p) v = vec3(2.0f * v.x, v.y, 2.0f * v.z);
     m.motion_positions = {p};
     test::add_mesh(d, m);
@@ -447,12 +447,12 @@ SceneDescription busy_room(int steps, bool still) {
   const int light = test::add_material(d, test::emitter(vec3(8.0f)));
   test::add_mesh(d, test::make_quad({0, -1, 0}, {1, 0, 0}, {0, 0, -1}, white));
   TriangleMesh wall = test::make_quad({0, 0, -1}, {1, 0, 0}, {0, 1, 0}, white);
-  std::vector<vec3> bent = wall.positions;
+  MeshArray<vec3> bent = wall.positions;
   for (vec3& v : bent) v.z += 0.3f * v.x * v.y;
   wall.motion_positions.assign(steps - 1, bent);
   test::add_mesh(d, wall);
   TriangleMesh sphere = test::make_sphere({0, 0, 0}, 0.25f, 2, white);
-  std::vector<vec3> swollen = sphere.positions;
+  MeshArray<vec3> swollen = sphere.positions;
   for (vec3& v : swollen) v *= 1.3f;
   sphere.motion_positions.assign(steps - 1, swollen);
   test::add_mesh(d, sphere, {translate(-0.4f, -0.7f, 0.2f), translate(0.4f, -0.7f, -0.3f)});

@@ -24,7 +24,7 @@ TriangleMesh make_sphere(glm::vec3 center, float radius, int subdivisions, int m
   std::vector<glm::vec3> v = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
                               {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
   for (auto& p : v) p = glm::normalize(p);
-  std::vector<std::uint32_t> f = {0, 11, 5, 0, 5, 1, 0, 1, 7, 0, 7, 10, 0, 10, 11, 1, 5, 9, 5, 11, 4,
+  MeshArray<std::uint32_t> f = {0, 11, 5, 0, 5, 1, 0, 1, 7, 0, 7, 10, 0, 10, 11, 1, 5, 9, 5, 11, 4,
                                   11, 10, 2, 10, 7, 6, 7, 1, 8, 3, 9, 4, 3, 4, 2, 3, 2, 6, 3, 6, 8,
                                   3, 8, 9, 4, 9, 5, 2, 4, 11, 6, 2, 10, 8, 6, 7, 9, 8, 1};
   for (int s = 0; s < subdivisions; ++s) {
@@ -36,7 +36,7 @@ TriangleMesh make_sphere(glm::vec3 center, float radius, int subdivisions, int m
       v.push_back(glm::normalize(v[a] + v[b]));
       return mid[key] = static_cast<std::uint32_t>(v.size() - 1);
     };
-    std::vector<std::uint32_t> g;
+    MeshArray<std::uint32_t> g;
     for (std::size_t i = 0; i < f.size(); i += 3) {
       const std::uint32_t a = f[i], b = f[i + 1], c = f[i + 2];
       const std::uint32_t ab = midpoint(a, b), bc = midpoint(b, c), ca = midpoint(c, a);

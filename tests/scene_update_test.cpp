@@ -162,7 +162,7 @@ TEST(SceneUpdate, MotionBlurredFramesUpdateToTheSameBits) {
     d.instances[3].motion = {translate({0.3f * t + 0.05f, 0, 0}), translate({0.3f * t + 0.1f, 0, 0})};  // the lamp
     TriangleMesh& wall = d.meshes[1].primitives[0];  // the back wall leans back over the shutter
     for (int k = 1; k < 3; ++k) {
-      std::vector<glm::vec3> leaned = wall.positions;
+      MeshArray<glm::vec3> leaned = wall.positions;
       for (glm::vec3& p : leaned) p.z -= 0.1f * k * (p.y + 1.0f) * (1.0f + t);
       wall.motion_positions.push_back(leaned);
     }

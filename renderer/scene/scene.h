@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <memory_resource>
 #include <string>
 #include <vector>
 
@@ -138,20 +139,25 @@ struct Material {
 
 // One triangle list with one material (a glTF mesh primitive after strip/fan conversion).
 // Attribute arrays are either empty or have one entry per position.
+// A vertex attribute or index array: on the heap as a std::vector's, except where the
+// renderer lays its world-space copies out together (renderer/scene_geometry.h).
+template <typename T>
+using MeshArray = std::pmr::vector<T>;
+
 struct TriangleMesh {
-  std::vector<glm::vec3> positions;
-  std::vector<glm::vec3> normals;
-  std::vector<glm::vec4> tangents;  // xyz tangent, w = bitangent sign
-  std::vector<glm::vec2> texcoords0, texcoords1;
-  std::vector<glm::vec4> colors;  // COLOR_0 as linear RGBA
-  std::vector<std::uint32_t> indices;  // three per triangle
+  MeshArray<glm::vec3> positions;
+  MeshArray<glm::vec3> normals;
+  MeshArray<glm::vec4> tangents;  // xyz tangent, w = bitangent sign
+  MeshArray<glm::vec2> texcoords0, texcoords1;
+  MeshArray<glm::vec4> colors;  // COLOR_0 as linear RGBA
+  MeshArray<std::uint32_t> indices;  // three per triangle
   int material = -1;  // -1 = the glTF default material
   // A mesh that deforms while the shutter is open (a skin, animated morph weights): its
   // positions, normals and tangents at motion steps 1 .. motion_steps - 1 (step 0 is the
   // arrays above), each as long as `positions`; normals and tangents only when the mesh has
   // them. Empty: it keeps its shape.
-  std::vector<std::vector<glm::vec3>> motion_positions, motion_normals;
-  std::vector<std::vector<glm::vec4>> motion_tangents;
+  std::vector<MeshArray<glm::vec3>> motion_positions, motion_normals;
+  std::vector<MeshArray<glm::vec4>> motion_tangents;
 
   std::size_t triangle_count() const { return indices.size() / 3; }
   bool deforms() const { return !motion_positions.empty(); }
