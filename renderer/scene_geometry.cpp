@@ -19,7 +19,8 @@ TriangleMesh mesh_in(std::pmr::memory_resource* memory) {
                       MeshArray<std::uint32_t>(memory), -1, {}, {}, {}};
 }
 
-// The bytes of a mesh's arrays, each from a 64-byte boundary (its own memory's alignment).
+// What a mesh's arrays take in the block, each rounded up to 64 bytes: more than the block's
+// packing (to each element's alignment) needs, so that the copies never spill to the heap.
 std::size_t array_bytes(const TriangleMesh& m) {
   auto bytes = [](const auto& a, std::size_t more = 0) { return ((a.size() + more) * sizeof(a[0]) + 63) / 64 * 64; };
   return bytes(m.positions, 1) + bytes(m.normals) + bytes(m.tangents) + bytes(m.texcoords0) + bytes(m.texcoords1) +
