@@ -137,13 +137,13 @@ struct Material {
   bool unlit = false;
 };
 
-// One triangle list with one material (a glTF mesh primitive after strip/fan conversion).
-// Attribute arrays are either empty or have one entry per position.
 // A vertex attribute or index array: on the heap as a std::vector's, except where the
 // renderer lays its world-space copies out together (renderer/scene_geometry.h).
 template <typename T>
 using MeshArray = std::pmr::vector<T>;
 
+// One triangle list with one material (a glTF mesh primitive after strip/fan conversion).
+// Attribute arrays are either empty or have one entry per position.
 struct TriangleMesh {
   MeshArray<glm::vec3> positions;
   MeshArray<glm::vec3> normals;
