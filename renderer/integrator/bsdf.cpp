@@ -332,35 +332,37 @@ bool GltfBsdf::sample(const vec3& wo, float u_lobe, const vec2& u, BsdfSample& s
   for (float acc = weight_[0]; lobe < kLobeCount - 1 && u_lobe >= acc; acc += weight_[++lobe]) {}
   if (weight_[lobe] <= 0.0f) return false;
   s.lobe = lobe;
+  vec3 wi;
   switch (lobe) {
     case kDiffuse:
-    case kSheen: s.wi = sample_cosine_hemisphere(u); break;
-    case kDiffuseTransmission: s.wi = -sample_cosine_hemisphere(u); break;
-    case kSpecular: s.wi = reflect(wo, ggx_.sample_visible(wo, u)); break;
+    case kSheen: wi = sample_cosine_hemisphere(u); break;
+    case kDiffuseTransmission: wi = -sample_cosine_hemisphere(u); break;
+    case kSpecular: wi = reflect(wo, ggx_.sample_visible(wo, u)); break;
     case kMultiScatter: {
       const float mu = multiscatter_shape_.sample_mu(u.x), r = std::sqrt(fmax_inline(0.0f, 1.0f - mu * mu));
       const float phi = 2.0f * kPi * u.y;
-      s.wi = {r * std::cos(phi), r * std::sin(phi), mu};
+      wi = {r * std::cos(phi), r * std::sin(phi), mu};
       break;
     }
     case kClearcoat: {
       const vec3 o = coat_tilted_ ? coat_frame_.to_local(wo) : wo;
       const vec3 i = reflect(o, coat_ggx_.sample_visible(o, u));
       if (i.z <= 0.0f) return false;  // below the coat: where its pdf is zero
-      s.wi = coat_tilted_ ? coat_frame_.to_world(i) : i;
+      wi = coat_tilted_ ? coat_frame_.to_world(i) : i;
       break;
     }
     default: {
       if (!refracts_) {  // thin-walled: straight through, weight straight_ / probability
-        s.wi = -wo;
+        s.set_wi(-wo);
         s.f = straight_ / wo.z;
         s.pdf = weight_[kTransmission];
         s.transmitted = s.passthrough = true;
         return s.pdf > 0.0f;
       }
-      if (!refract(wo, ggx_.sample_visible(wo, u), eta_, s.wi)) return false;  // total internal reflection
+      if (!refract(wo, ggx_.sample_visible(wo, u), eta_, wi)) return false;  // total internal reflection
     }
   }
+  s.set_wi(wi);
   const bool below = lobe == kTransmission || lobe == kDiffuseTransmission;
   if (below ? s.wi.z >= 0.0f : s.wi.z <= 0.0f) return false;
   s.f = eval(wo, s.wi, s.pdf);

@@ -36,6 +36,11 @@
 // lobes' pdfs. Plain struct, no virtual calls.
 #pragma once
 
+#include <xmmintrin.h>
+
+#include <cstddef>
+#include <cstring>
+
 #include "renderer/integrator/materials.h"
 #include "renderer/integrator/microfacet.h"
 #include "renderer/integrator/microfacet_albedo.h"
@@ -44,8 +49,17 @@
 
 namespace tessera {
 
-struct BsdfSample {
+// alignas(16) and wi_pad: GltfBsdf::sample stores wi in one 16-byte store (set_wi), which a
+// caller's 8-byte load of wi.z and the float after it can then read from the store buffer; two
+// 4-byte stores cannot be forwarded to it, and that wait was 12% of path_vertex's time on
+// DamagedHelmet.
+struct alignas(16) BsdfSample {
   vec3 wi{0.0f};  // local frame
+  float wi_pad = 0.0f;
+  void set_wi(const vec3& v) {
+    const __m128 x = _mm_setr_ps(v.x, v.y, v.z, 0.0f);
+    std::memcpy(static_cast<void*>(this), &x, sizeof x);
+  }
   vec3 f{0.0f};  // BSDF value (whole mixture)
   float pdf = 0.0f;  // solid angle (whole mixture)
   bool transmitted = false;  // wi is below the surface
@@ -55,6 +69,7 @@ struct BsdfSample {
   bool passthrough = false;
   int lobe = -1;  // the GltfBsdf::Lobe sampled (for --pixel's path printout)
 };
+static_assert(offsetof(BsdfSample, wi) == 0 && offsetof(BsdfSample, wi_pad) == 12, "set_wi stores both");
 
 // Cosine-weighted direction on the upper hemisphere (Malley's method).
 inline vec3 sample_cosine_hemisphere(const vec2& u) {
