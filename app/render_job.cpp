@@ -73,6 +73,10 @@ void print_summary(const RenderOptions& o, const FramePlan& to, const RenderSett
       settings.tile_size, s.camera_samples / s.seconds * 1e-6, s.rays / s.seconds * 1e-6,
       scheduler_name(settings.scheduler), tile_order_name(settings.tile_order), 100.0 * s.efficiency, s.imbalance,
       s.dropped_samples ? fmt::format(", {} non-finite samples dropped", s.dropped_samples) : ""));
+  if (s.emitter_pick < 1.0f)
+    print_status(fmt::format("tessera: emitters light-sampled at {:.0f}% of path vertices (their share of the direct "
+                             "light the camera sees: docs/materials-and-lights.md#emitter-sampling)",
+                             100.0 * s.emitter_pick));
   if (!result.profile.ranks.empty()) print_rank_summary(result.profile);
   if (settings.adaptive.on()) print_adaptive_summary(settings, result);
   std::string why;

@@ -2,6 +2,7 @@
 
 #include <optional>
 
+#include "renderer/integrator/emitter_pick.h"
 #include "renderer/render.h"
 
 namespace tessera {
@@ -11,6 +12,10 @@ CameraSampler::CameraSampler(const RenderScene& scene, const RenderCamera& camer
   scene.check_camera(camera);
   params_.max_bounces = settings.max_bounces;
   params_.light_sampling = settings.light_sampling;
+  // MIS alone may skip emitters where they hardly light the scene; one strategy alone may not.
+  if (settings.light_sampling == LightSampling::Mis)
+    params_.emitter_pick = settings.emitter_pick > 0.0f ? std::min(settings.emitter_pick, 1.0f)
+                                                        : emitter_pick_probability(scene, camera);
   params_.clamp = settings.clamp;
   params_.transparent_background = settings.aovs.coverage;
   // Motion blur: each camera sample draws its time, after the film and lens positions. A

@@ -45,6 +45,8 @@ class CameraSampler {
   // is the radiance background_samples() gives (valid, no hit), and the caller may sum them
   // in closed form.
   bool background_only(int fx, int fy) const { return uniform_background_ && !coverage_.may_hit(fx, fy); }
+  // The probability that a path vertex samples an emitter (integrator/emitter_pick.h).
+  float emitter_pick() const { return params_.emitter_pick; }
   // n such samples: their radiance, each the same; counted as dropped when it is not finite.
   const vec3& background_samples(int n, PathCounters& counters) const;
   template <typename Each>

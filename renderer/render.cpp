@@ -268,6 +268,7 @@ RenderResult render_frame(const RenderScene& scene, const RenderCamera& camera,
   stats.cancelled = mon.cancel;
   stats.time_limited = out_of_time && film.samples_left(settings.spp) > 0;
   stats.converged_pixels = film.converged_pixels();
+  stats.emitter_pick = sampler.emitter_pick();
   RenderResult result;
   result.stats = stats;
   result.profile = recorder.finish();

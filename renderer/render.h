@@ -44,6 +44,10 @@ struct RenderSettings {
   double checkpoint_interval = 0.0;
   std::function<void(const Film&, const RenderStats&)> on_checkpoint;
   LightSampling light_sampling = LightSampling::Mis;
+  // With MIS, the probability that a path vertex samples an emitter; 0: from a pilot of the
+  // scene's direct light (integrator/emitter_pick.h). Any value in (0, 1] gives the same image
+  // in expectation.
+  float emitter_pick = 0.0f;
   float clamp = 0.0f;  // > 0: clamp each sample's luminance (biased, off by default)
   // Camera rays that provably miss everything are not traced (renderer/camera_coverage.h);
   // false traces every one, the same image: what the tests compare with.
@@ -82,6 +86,7 @@ struct RenderStats {
   bool time_limited = false;  // the time limit stopped it before spp
   std::uint64_t resumed_samples = 0;  // camera samples the film held before this run
   std::uint64_t converged_pixels = 0;  // adaptive sampling: pixels stopped before spp
+  float emitter_pick = 1.0f;  // the probability a vertex sampled an emitter (RenderSettings)
   double efficiency = 1.0, imbalance = 1.0;  // see LoadBalance
 };
 

@@ -182,9 +182,11 @@ TEST(RenderClosedForm, SingleSidedEmitterIsDarkFromBehind) {
 }
 
 // A diffuse floor under a square emitter against the parallel-rectangle form factor
-// (test::floor_under_square_emitter), the whole scene `lift` above the origin. One bounce,
-// black background: direct light only, found by light sampling and BSDF sampling together (MIS).
-void expect_floor_under_square_emitter(float lift, bool animated = false) {
+// (test::floor_under_square_emitter), the whole scene `lift` above the origin. One bounce:
+// direct light only, found by light sampling and BSDF sampling together (MIS). Under a uniform
+// `sky` the floor sees it too, but for the emitter's solid angle, whose back (black) hides it:
+// albedo Lsky (1 - 4F). `pick`: the probability a vertex samples the emitter (0: the pilot's).
+void expect_floor_under_square_emitter(float lift, bool animated = false, float sky = 0.0f, float pick = 0.0f) {
   const float a = 0.25f, h = 1.0f, le = 4.0f, albedo = 0.5f;
   SceneDescription scene;
   scene.animated = animated;
@@ -194,8 +196,10 @@ void expect_floor_under_square_emitter(float lift, bool animated = false) {
   s.width = s.height = 5;  // the centre pixel looks at the origin through a 0.01 degree field
   s.spp = 4096;
   s.max_bounces = 1;
-  const RenderResult r = render(scene, test::look_at({0, lift + 0.5f, 3}, {0, lift, 0}, 0.01f), s, vec3(0));
-  const double expected = test::floor_under_square_emitter(a, h, le, albedo);
+  s.emitter_pick = pick;
+  const RenderResult r = render(scene, test::look_at({0, lift + 0.5f, 3}, {0, lift, 0}, 0.01f), s, vec3(sky));
+  const double expected = test::floor_under_square_emitter(a, h, le, albedo) +
+                          sky * (albedo - test::floor_under_square_emitter(a, h, 1.0, albedo));
   // The floor is seen at 9.5 degrees, so the footprint is 6x longer than wide: over 0.1 degree
   // (+-16 mm along) the irradiance fell by 1.5e-4 on average, at 0.01 degree by ~1e-6.
   const PixelStats st = stats_of(r.image);
@@ -205,6 +209,16 @@ void expect_floor_under_square_emitter(float lift, bool animated = false) {
 }
 
 TEST(RenderClosedForm, FloorUnderASquareEmitterMatchesTheFormFactor) { expect_floor_under_square_emitter(0.0f); }
+
+// Under a white sky the pilot has the emitter sampled at a share of the vertices
+// (integrator/emitter_pick.h); at that share, at one in ten and at every vertex the floor
+// shows the same light: the estimate is divided by the probability, and MIS knows it.
+TEST(RenderClosedForm, FloorUnderASquareEmitterAndASkyMatchesTheFormFactorHoweverOftenTheEmitterIsSampled) {
+  for (float pick : {0.0f, 0.1f, 1.0f}) {
+    SCOPED_TRACE(pick);
+    expect_floor_under_square_emitter(0.0f, false, 1.0f, pick);
+  }
+}
 
 // The same 100 units up, where a ray origin's offset off its surface (256 ulps of each
 // coordinate: 2e-3 there) exceeds the shadow ray's tolerance before the light (1e-4 of the

@@ -106,19 +106,20 @@ AreaLights::Shape AreaLights::shape_at(const HitRecord& where, float side) const
   return sh;
 }
 
-AreaLights::Choice AreaLights::choose(float u_select) const {
-  if (triangles_.empty()) return {};
-  const std::size_t i = by_power_.sample(u_select);
+AreaLights::Choice AreaLights::choose(float u_select, float pick) const {
+  // u_select / pick is uniform in [0, 1) below pick: the same stratified number chooses both.
+  if (triangles_.empty() || !(u_select < pick)) return {};
+  const std::size_t i = by_power_.sample(u_select / pick);
   const Triangle* tri = &triangles_[i];
   __builtin_prefetch(tri);
   __builtin_prefetch(reinterpret_cast<const char*>(tri) + 64);
-  return {i};
+  return {i, pick};
 }
 
 bool AreaLights::sample(const vec3& p, float time, const Choice& light, const vec2& u_point, AreaLightSample& s) const {
   if (light.index >= triangles_.size()) return false;
   const Triangle& tri = triangles_[light.index];
-  const float pmf = tri.pmf;
+  const float pmf = light.pick * tri.pmf;
   if (pmf <= 0.0f) return false;
   const Shape sh = tri.moves ? shape_at(at_time(tri.where, time), tri.side) : tri.shape;
   if (!(sh.area > 0.0f)) return false;  // a moving one where it collapses
@@ -146,7 +147,7 @@ vec3 AreaLights::radiance(const Choice& light, const AreaLightSample& s) const {
   return tri.textured ? materials_.emission(tri.texturing.at(s.at.x, s.at.y)) : tri.radiance;
 }
 
-float AreaLights::pdf(const HitRecord& hit, const SurfaceHit& surface, const vec3& direction) const {
+float AreaLights::pdf(const HitRecord& hit, const SurfaceHit& surface, const vec3& direction, float pick) const {
   const auto it = first_.find(list_key(hit.geom, hit.instance));
   if (it == first_.end()) return 0.0f;
   const std::uint32_t i = it->second + hit.prim;
@@ -155,7 +156,7 @@ float AreaLights::pdf(const HitRecord& hit, const SurfaceHit& surface, const vec
   const float abs_cos = std::fabs(glm::dot(surface.ng, direction));
   if (tri.pmf <= 0.0f || !(abs_cos > 0.0f)) return 0.0f;
   const float area = tri.moves ? shape_at(at_time(tri.where, hit.time), tri.side).area : tri.shape.area;
-  return tri.pmf * surface.t * surface.t / (area * abs_cos);
+  return pick * tri.pmf * surface.t * surface.t / (area * abs_cos);
 }
 
 }  // namespace tessera

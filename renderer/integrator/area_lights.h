@@ -30,13 +30,15 @@ class AreaLights {
   bool empty() const { return triangles_.empty(); }
   std::size_t size() const { return triangles_.size(); }
 
-  // The light u_select chooses (by power), its record prefetched; with no light (and before
-  // a choice), an index past the end. A path chooses as soon as it knows its hit, so that the
-  // record (one of thousands: a cache miss) arrives while the material is evaluated.
+  // The light u_select chooses, its record prefetched: with probability `pick` one of them
+  // (by power; integrator/emitter_pick.h), else none. With no light (and before a choice), an
+  // index past the end. A path chooses as soon as it knows its hit, so that the record (one
+  // of thousands: a cache miss) arrives while the material is evaluated.
   struct Choice {
     std::size_t index = std::numeric_limits<std::size_t>::max();
+    float pick = 1.0f;  // the probability of choosing any light: a factor of the sample's pdf
   };
-  Choice choose(float u_select) const;
+  Choice choose(float u_select, float pick = 1.0f) const;
 
   // Samples a point on the chosen light as seen from `p` at `time`; false when the sample
   // carries nothing. A textured emission's texels are prefetched: radiance() reads them, after
@@ -45,8 +47,9 @@ class AreaLights {
   vec3 radiance(const Choice& light, const AreaLightSample& s) const;  // emitted towards the shading point
 
   // Solid-angle pdf with which sample() would have produced the hit `hit` (a point on an
-  // emissive triangle at hit.time, surface.t away from the shading point along `direction`).
-  float pdf(const HitRecord& hit, const SurfaceHit& surface, const vec3& direction) const;
+  // emissive triangle at hit.time, surface.t away from the shading point along `direction`)
+  // after a choice with probability `pick` of any light.
+  float pdf(const HitRecord& hit, const SurfaceHit& surface, const vec3& direction, float pick = 1.0f) const;
 
  private:
   // Where a triangle is: corner, edges, front normal and area.

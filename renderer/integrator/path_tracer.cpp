@@ -53,11 +53,13 @@ vec3 thin_transmittance(const void* user, const Ray& ray, const HitRecord& hit) 
   return GltfBsdf(sp, frame.to_local(-ray.direction), front ? sp.ior : 1.0f / sp.ior, frame).straight_transmittance();
 }
 
-// What reaches the shading point from `distance` along wi (infinity: the environment) at
-// the path's time.
+}  // namespace
+
 vec3 visibility(const RenderScene& scene, const vec3& origin, const vec3& wi, float distance, float time) {
   return scene.geometry->transmittance(origin, wi, distance, time, thin_transmittance, &scene);
 }
+
+namespace {
 
 struct ShadingContext {
   const SurfaceHit& s;
@@ -265,7 +267,7 @@ bool path_vertex(const RenderScene& scene, const PathTracerParams& params, PathS
   bool light_chosen = false;
   auto choose_light = [&] {
     u_light = rng.next3();
-    light = scene.area_lights->choose(u_light.z);
+    light = scene.area_lights->choose(u_light.z, params.emitter_pick);
     light_chosen = true;
   };
   if (light_sampling && !last && !(wavelength == 0.0f && scene.materials.material(s.material).dispersion > 0.0f))
@@ -282,7 +284,7 @@ bool path_vertex(const RenderScene& scene, const PathTracerParams& params, PathS
     from_vertex.t += passed;
     const float weight =
         bsdf_pdf > 0.0f && light_sampling
-            ? strategy_weight(mode, false, bsdf_pdf, scene.area_lights->pdf(hit, from_vertex, ray.direction))
+            ? strategy_weight(mode, false, bsdf_pdf, scene.area_lights->pdf(hit, from_vertex, ray.direction, params.emitter_pick))
             : 1.0f;
     radiance += throughput * sp.emission * weight;
     if (vertex) vertex->emitted = throughput * sp.emission * weight;

@@ -20,11 +20,17 @@ struct PathTracerParams {
   int max_bounces = 8;  // scattering events; 0 shows emitters and the environment only
   int roulette_start = 5;  // bounces before Russian roulette may end a path
   LightSampling light_sampling = LightSampling::Mis;
+  // The probability that a vertex samples an emitter (integrator/emitter_pick.h), in (0, 1].
+  float emitter_pick = 1.0f;
   float clamp = 0.0f;  // > 0: clamp each sample's radiance to this luminance (biased; off by default)
   // A camera ray that hits nothing adds no background (it still lights what rays reach):
   // the film's alpha says where the background shows, for compositing over a plate.
   bool transparent_background = false;
 };
+
+// What reaches `origin` from `distance` along the unit direction wi (infinity: the
+// environment) at `time`: 0 behind an opaque surface, what thin transmissive ones let through.
+vec3 visibility(const RenderScene& scene, const vec3& origin, const vec3& wi, float distance, float time);
 
 // What the camera ray saw first, for the albedo, normal and depth outputs; through a mirror,
 // the albedo and normal of what it shows (path_tracer.cpp: features_look_through).
