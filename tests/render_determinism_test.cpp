@@ -12,8 +12,9 @@
 namespace tessera {
 namespace {
 
-// A small closed room with a sphere, an emitter and a point light: long paths,
-// Russian roulette, shadow rays and instancing all take part.
+// A small room with a sphere, an emitter and a point light, open at the front and right to a
+// bright background: long paths, Russian roulette, shadow rays, instancing and emitters sampled
+// at a share of the vertices (the background competes with them) all take part.
 RenderScene& room() {
   static RenderScene* scene = [] {
     SceneDescription d;
@@ -32,7 +33,7 @@ RenderScene& room() {
     point.intensity = 2.0f;
     d.lights.push_back(point);
     EnvironmentParams env;
-    env.background = vec3(0.2f);
+    env.background = vec3(2.0f);
     return new RenderScene(std::move(d), env);
   }();
   return *scene;
@@ -50,6 +51,18 @@ FrameImage render_with(int threads, int tile_size) {
   s.aovs = {true, true, true};
   const RenderCamera cam = make_camera(test::look_at({0, 0, 3}, {0, 0, 0}, 45.0f), s.width, s.height, {0.0f, 0.05f, 3.0f});
   return render_frame(room(), cam, s).image;
+}
+
+// The room's background competes with its emitter: the pilot of emitter sampling
+// (integrator/emitter_pick.h) runs, and has the emitter sampled at a share of the vertices.
+TEST(RenderDeterminism, TheRoomSamplesItsEmitterAtAShareOfTheVertices) {
+  RenderSettings s;
+  s.width = s.height = 8;
+  s.spp = 1;
+  const RenderCamera cam = make_camera(test::look_at({0, 0, 3}, {0, 0, 0}, 45.0f), s.width, s.height, {0.0f, 0.05f, 3.0f});
+  const float pick = render_frame(room(), cam, s).stats.emitter_pick;
+  EXPECT_GT(pick, 0.05f);
+  EXPECT_LT(pick, 1.0f);
 }
 
 TEST(RenderDeterminism, OneThreadAndTwoThreadsGiveTheSameBits) {
