@@ -32,9 +32,8 @@ void add_direct_light(const RenderScene& scene, const Ray& ray, const HitRecord&
     const AreaLights::Choice light = scene.area_lights->choose(u.z);
     if (scene.area_lights->sample(s.p, params.time, light, {u.x, u.y}, ls)) {
       const float cosine = glm::dot(ls.wi, n);
-      const float to_plane = glm::dot(ls.normal, ls.p - origin) / glm::dot(ls.normal, ls.wi);
-      if (cosine > 0.0f && to_plane > 0.0f) {
-        const vec3 through = visibility(scene, origin, ls.wi, to_plane * (1.0f - 1e-4f), params.time);
+      if (cosine > 0.0f) {
+        const vec3 through = visibility_to_surface(scene, origin, ls.wi, ls.p, ls.normal, params.time);
         sum.emitters += luminance(through * scene.area_lights->radiance(light, ls)) * cosine / ls.pdf;
       }
     }

@@ -59,6 +59,13 @@ vec3 visibility(const RenderScene& scene, const vec3& origin, const vec3& wi, fl
   return scene.geometry->transmittance(origin, wi, distance, time, thin_transmittance, &scene);
 }
 
+vec3 visibility_to_surface(const RenderScene& scene, const vec3& from, const vec3& wi, const vec3& on, const vec3& normal,
+                           float time) {
+  const float to_plane = glm::dot(normal, on - from) / glm::dot(normal, wi);
+  if (!(to_plane > 0.0f)) return vec3(1.0f);  // the origin moved past the plane: nothing lies between
+  return visibility(scene, from, wi, to_plane * (1.0f - 1e-4f), time);
+}
+
 namespace {
 
 struct ShadingContext {
@@ -73,16 +80,9 @@ struct ShadingContext {
     return offset_ray_origin(s.p, glm::dot(wi, s.ng) >= 0.0f ? s.ng : -s.ng, s.extent);
   }
   // What reaches this point along wi from a point on a surface of normal `normal` through
-  // `on` (a light's). The ray leaves from the moved origin along wi, so it meets that surface's
-  // plane (offset * cos between the normals / cos at the far end) before the sampled point:
-  // it stops short of where it meets the plane, not of the sampled point's distance. The offset
-  // grows with the coordinates, and far from the scene's origin (at y = 100: 2e-3) it exceeds
-  // any tolerance relative to the distance: the ray was stopped by the light itself.
+  // `on` (a light's), leaving from the moved origin.
   vec3 visibility_to(const RenderScene& scene, const vec3& wi, const vec3& on, const vec3& normal) const {
-    const vec3 from = origin_towards(wi);
-    const float to_plane = glm::dot(normal, on - from) / glm::dot(normal, wi);
-    if (!(to_plane > 0.0f)) return vec3(1.0f);  // the origin moved past the plane: nothing lies between
-    return visibility(scene, from, wi, to_plane * (1.0f - 1e-4f), time);
+    return visibility_to_surface(scene, origin_towards(wi), wi, on, normal, time);
   }
   // A light direction the BSDF can scatter into, with its |cosine| in the shading frame.
   bool usable(const vec3& wi, vec3& wi_local) const {

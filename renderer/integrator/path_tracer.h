@@ -31,6 +31,14 @@ struct PathTracerParams {
 // What reaches `origin` from `distance` along the unit direction wi (infinity: the
 // environment) at `time`: 0 behind an opaque surface, what thin transmissive ones let through.
 vec3 visibility(const RenderScene& scene, const vec3& origin, const vec3& wi, float distance, float time);
+// What reaches `from` along wi from the point `on` of a surface of normal `normal` (a light's),
+// `from` moved off its own surface. The ray from the moved origin meets that surface's plane
+// (offset * cos between the normals / cos at the far end) before the point: it stops short of
+// where it meets the plane, not of the point's distance. The offset grows with the
+// coordinates, and far from the scene's origin (at y = 100: 2e-3) it exceeds any tolerance
+// relative to the distance: the ray would be stopped by the light itself.
+vec3 visibility_to_surface(const RenderScene& scene, const vec3& from, const vec3& wi, const vec3& on, const vec3& normal,
+                           float time);
 
 // What the camera ray saw first, for the albedo, normal and depth outputs; through a mirror,
 // the albedo and normal of what it shows (path_tracer.cpp: features_look_through).
