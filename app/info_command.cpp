@@ -71,7 +71,7 @@ SceneCounts count_scene(const SceneDescription& s) {
   }
   for (const Instance& inst : s.instances)
     for (const TriangleMesh& p : s.meshes[inst.mesh].primitives) c.placed += p.triangle_count();
-  for (const Image& img : s.images) c.textured += img.width > 0;
+  for (const Image& img : s.images) c.textured += img.pixels != nullptr;  // decoded: a used material shows it
   return c;
 }
 
@@ -177,7 +177,7 @@ int run_info(const InfoOptions& o) {
                  k.skeleton >= 0 ? fmt::format(", skeleton node {}", k.skeleton) : "");
     }
   }
-  fmt::print("textures    {} images\n", counts.textured);
+  fmt::print("textures    {} images shown (of {} in the file)\n", counts.textured, s.images.size());
   fmt::print("cameras     {}\n", s.cameras.size());
   for (std::size_t i = 0; i < s.cameras.size(); ++i) {
     const Camera& c = s.cameras[i];

@@ -2,10 +2,8 @@
 
 #include <algorithm>
 #include <cstring>
-#include <numeric>
 
 #include <fmt/format.h>
-#include <tbb/parallel_for.h>
 #include <webp/decode.h>
 
 #include "scene_io/gltf_data_uri.h"
@@ -86,8 +84,9 @@ int extension_source(const tinygltf::Texture& tex, const char* name) {
   return it->second.Get("source").GetNumberAsInt();
 }
 
-// The one place that picks a decoder, by the bytes' signature: JPEG libjpeg-turbo, WebP
-// libwebp, anything else (PNG) tinygltf's stb_image. "" when decoded, else the problem.
+}  // namespace
+
+// The one place that picks a decoder.
 std::string decode_image(tinygltf::Image* image, int index, const unsigned char* bytes, int size) {
   if (is_jpeg(bytes, size)) return decode_jpeg(image, bytes, size);
   if (is_webp(bytes, size)) return decode_webp(image, bytes, size) ? "" : "it is not a valid WebP image";
@@ -96,8 +95,6 @@ std::string decode_image(tinygltf::Image* image, int index, const unsigned char*
              ? ""
              : "it is not a PNG, JPEG or WebP image";
 }
-
-}  // namespace
 
 std::vector<DeclaredMediaTypes> declared_media_types(const nlohmann::json& gltf) {
   std::vector<DeclaredMediaTypes> out;
@@ -130,63 +127,56 @@ bool load_gltf_image(tinygltf::Image* image, const int index, std::string* err, 
     image->mimeType = "image/ktx2";
     return true;
   }
-  ctx->pending.push_back({index, std::vector<unsigned char>(bytes, bytes + size)});
+  if (!recognised_format(bytes, size)) ctx->unrecognised.push_back(index);
+  ctx->store->keep(index, std::vector<unsigned char>(bytes, bytes + size));
   (void)err, (void)warn, (void)width, (void)height;
   return true;
 }
 
-void decode_pending_images(tinygltf::Model& model, ImageLoadContext& ctx) {
-  std::vector<std::string> problems(ctx.pending.size());
-  // Largest first: one large image (DamagedHelmet's progressive JPEG) otherwise decides when
-  // the last thread finishes.
-  std::vector<std::size_t> order(ctx.pending.size());
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return ctx.pending[a].bytes.size() > ctx.pending[b].bytes.size();
-  });
-  tbb::parallel_for(std::size_t{0}, order.size(), std::size_t{1}, [&](std::size_t n) {
-    const std::size_t k = order[n];
-    const ImageLoadContext::Pending& p = ctx.pending[k];
-    tinygltf::Image* image = &model.images[p.index];
-    const std::string problem = decode_image(image, p.index, p.bytes.data(), static_cast<int>(p.bytes.size()));
-    if (problem.empty()) return;
-    // A defect of this image alone: refused only when a texture the scene uses shows it.
-    problems[k] = fmt::format("image {} ({}) could not be decoded: {}", p.index, gltf_image_source(*image), problem);
-    image->mimeType = kUndecodableImage;
-  });
-  for (std::size_t k = 0; k < problems.size(); ++k)
-    if (!problems[k].empty()) ctx.defective.emplace_back(ctx.pending[k].index, problems[k]);
-  ctx.pending.clear();
+void decode_unrecognised_images(const tinygltf::Model& model, ImageLoadContext& ctx) {
+  ctx.store->decode(model, ctx.unrecognised);
+  for (int index : ctx.unrecognised)
+    if (std::string problem = ctx.store->decoded(index).problem; !problem.empty())
+      ctx.defective.emplace_back(index, std::move(problem));
 }
 
 std::string gltf_image_source(const tinygltf::Image& image) {
+  if (image.uri.rfind("data:", 0) == 0) return "data URI";
   if (!image.uri.empty()) return shorten(image.uri);
   if (image.bufferView >= 0) return fmt::format("bufferView {}", image.bufferView);
   return "data URI";
 }
 
-bool decode_webp_data_uri(tinygltf::Image& image) {
+bool keep_webp_data_uri(const tinygltf::Image& image, int index, GltfImageStore& store) {
   static const std::string prefix = "data:image/webp;base64,";
   if (image.uri.rfind(prefix, 0) != 0) return false;
   // tinygltf decodes base64 data URIs only of the media types it knows.
   std::vector<unsigned char> bytes;
   std::string mime;
   const std::string known = "data:application/octet-stream;base64," + image.uri.substr(prefix.size());
-  if (!tinygltf::DecodeDataURI(&bytes, mime, known, 0, false) || bytes.size() > INT32_MAX) return false;
-  return is_webp(bytes.data(), static_cast<int>(bytes.size())) &&
-         decode_webp(&image, bytes.data(), static_cast<int>(bytes.size()));
+  if (!tinygltf::DecodeDataURI(&bytes, mime, known, 0, false) || bytes.size() > INT32_MAX ||
+      !is_webp(bytes.data(), static_cast<int>(bytes.size())))
+    return false;
+  store.keep(index, std::move(bytes));
+  return true;
 }
 
 bool is_ktx2_image(const tinygltf::Image& image) {
   return image.image.empty() && (image.mimeType == "image/ktx2" || image.mimeType == kUndecodableImage);
 }
 
-int texture_image(const tinygltf::Model& model, const std::string& file, int index, const GltfDefects& defects) {
+int texture_image(const tinygltf::Model& model, const std::string& file, int index, const GltfDefects& defects,
+                  const GltfImageStore& store) {
   const tinygltf::Texture& tex = model.textures[index];
   int source = extension_source(tex, "EXT_texture_webp");
   const int images = static_cast<int>(model.images.size());
   // A WebP source tessera cannot read falls back to `source`, as the extension intends.
-  if (source < 0 || (source < images && tex.source >= 0 && is_ktx2_image(model.images[source]))) source = tex.source;
+  auto unreadable = [&](int image) {
+    if (is_ktx2_image(model.images[image])) return true;
+    store.decode(model, {image});
+    return !store.decoded(image).problem.empty();
+  };
+  if (source < 0 || (source < images && tex.source >= 0 && unreadable(source))) source = tex.source;
   if (source >= static_cast<int>(model.images.size()))
     throw SceneLoadError(file, fmt::format("texture {} refers to image {}, but the file has {}", index, source,
                                            count_of(model.images.size(), "image")));

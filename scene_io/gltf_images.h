@@ -10,6 +10,7 @@
 #include <tiny_gltf.h>
 
 #include "scene_io/gltf_defects.h"
+#include "scene_io/gltf_image_store.h"
 
 namespace tessera {
 
@@ -29,44 +30,48 @@ struct DeclaredMediaTypes {
 // By image index, from the JSON as the file gives it (before gltf_prepare.cpp rewrites it).
 std::vector<DeclaredMediaTypes> declared_media_types(const nlohmann::json& gltf);
 
-// What the image callback saw: the encoded bytes of the images to decode (by index, decoded
-// afterwards and in parallel by decode_pending_images), and the images that could not be, or
-// whose bytes contradict what they declare (`declared`, filled before tinygltf reads the file).
+// What the image callback saw: the images to decode, kept encoded in `store` (decoded when a
+// scene shows them); the images it could not keep, or whose bytes contradict what they declare
+// (`declared`, filled before tinygltf reads the file); and the images of no format glTF
+// names, which only decoding can tell from garbage (decode_unrecognised_images).
 struct ImageLoadContext {
-  struct Pending {
-    int index;
-    std::vector<unsigned char> bytes;
-  };
   std::vector<DeclaredMediaTypes> declared;
-  std::vector<Pending> pending;
+  GltfImageStore* store = nullptr;
   std::vector<std::pair<int, std::string>> defective;
+  std::vector<int> unrecognised;
 };
 
-// tinygltf's LoadImageDataFunction; `user` is an ImageLoadContext. It keeps the bytes for
-// decode_pending_images: tinygltf calls it image after image, and decoding a model's
-// textures one by one was most of its load time (DamagedHelmet: five 2048^2 images). An image
-// of a recognised format (PNG, JPEG, WebP, KTX2) other than it declares goes to ctx.defective.
+// tinygltf's LoadImageDataFunction; `user` is an ImageLoadContext. It keeps the bytes in the
+// store: tinygltf calls it image after image, and decoding there, one by one, was most of a
+// model's load time (DamagedHelmet: five 2048^2 images). An image of a recognised format (PNG,
+// JPEG, WebP, KTX2) other than it declares goes to ctx.defective.
 bool load_gltf_image(tinygltf::Image* image, int index, std::string* err, std::string* warn, int width, int height,
                      const unsigned char* bytes, int size, void* user);
 
-// Decodes the images load_gltf_image kept, each by the decoder its bytes' signature picks
-// (JPEG: libjpeg-turbo; WebP: libwebp; else tinygltf's stb_image, for PNG), in parallel
-// (TBB), largest first; each one it cannot decode goes to ctx.defective, in index order.
-void decode_pending_images(tinygltf::Model& model, ImageLoadContext& ctx);
+// Decodes the images of no recognised signature now (stb_image reads BMP, GIF and others, and
+// tells them from bytes that are no image): those that fail go to ctx.defective, so that one
+// the scene does not use is a warning, as before decoding became lazy.
+void decode_unrecognised_images(const tinygltf::Model& model, ImageLoadContext& ctx);
+
+// Decodes `bytes` by the decoder their signature picks (JPEG: libjpeg-turbo; WebP: libwebp;
+// else tinygltf's stb_image, for PNG) into `image`. "" when decoded, else the problem.
+std::string decode_image(tinygltf::Image* image, int index, const unsigned char* bytes, int size);
 
 // "textures/a.png", "bufferView 3" or "data URI": where an image's bytes are, for messages.
 std::string gltf_image_source(const tinygltf::Image& image);
 
-// Decodes a base64 data URI of media type image/webp (which tinygltf leaves undecoded) into
-// `image`. False when the URI is not one or does not hold a WebP image.
-bool decode_webp_data_uri(tinygltf::Image& image);
+// Keeps the bytes of image `index`'s base64 data URI of media type image/webp (which tinygltf
+// leaves undecoded) in `store`. False when the URI is not one or does not hold WebP bytes.
+bool keep_webp_data_uri(const tinygltf::Image& image, int index, GltfImageStore& store);
 
 // True for a KTX2 image, which load_gltf_image leaves undecoded, and for one it could not decode.
 bool is_ktx2_image(const tinygltf::Image& image);
 
 // The image texture `index` shows: EXT_texture_webp's source, else `source` (for
-// KHR_texture_basisu, its fallback). -1 when it has none. Throws SceneLoadError for a
-// texture that has only a KTX2 image, and the defect of an image it shows.
-int texture_image(const tinygltf::Model& model, const std::string& file, int index, const GltfDefects& defects);
+// KHR_texture_basisu, its fallback, and for a WebP image that cannot be decoded, which is
+// decoded now to know). -1 when it has none. Throws SceneLoadError for a texture that has only
+// a KTX2 image, and the defect of an image it shows.
+int texture_image(const tinygltf::Model& model, const std::string& file, int index, const GltfDefects& defects,
+                  const GltfImageStore& store);
 
 }  // namespace tessera

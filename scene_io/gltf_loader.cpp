@@ -48,13 +48,12 @@ bool finite_matrix(const glm::mat4& m) {
 class Converter {
  public:
   Converter(const GltfDocument& document, GltfLoadResult& result)
-      : model_(document.model), image_pixels_(document.image_pixels), file_(document.path),
+      : model_(document.model), images_(*document.images), file_(document.path),
         defects_(document.defects), result_(result),
         out_(result.scene), warnings_(result.warnings), reader_{model_, file_, &defects_, &read_accessors_} {}
 
   void run(const GltfLoadParams& params) {
     check_extensions();
-    out_.images = convert_images(model_, image_pixels_, file_);
     parent_ = check_node_hierarchy(model_, file_);
     const std::vector<int> roots = scene_roots(model_, choose_scene(params.scene), parent_, file_);
     result_.animations = animation_names(model_);
@@ -67,7 +66,8 @@ class Converter {
         [&] { return read_material_variants(model_, file_); }, std::vector<std::string>{});
     if (!params.variant.empty())
       result_.material_variant = choose_material_variant(result_.material_variants, params.variant, file_);
-    out_.materials = convert_materials(model_, file_, defects_, used.materials, warnings_);
+    out_.materials = convert_materials(model_, file_, defects_, images_, used.materials, warnings_);
+    out_.images = convert_images(model_, images_, images_shown(out_.materials, used.materials), file_);
     for (std::size_t a = 0; a < model_.animations.size(); ++a)
       result_.animations[a] = defects_.read_object(
           used.animations[a], fmt::format("animation {}", a), file_, warnings_,
@@ -149,7 +149,7 @@ class Converter {
     for (std::size_t t = 0; t < model_.textures.size(); ++t)
       defects_.read_object(false, fmt::format("texture {}", t), file_, warnings_,
                            [&] {
-                             texture_image(model_, file_, static_cast<int>(t), defects_);
+                             texture_image(model_, file_, static_cast<int>(t), defects_, images_);
                              return texture_sampler(model_, file_, static_cast<int>(t), defects_);
                            },
                            static_cast<const tinygltf::Sampler*>(nullptr));
@@ -582,7 +582,7 @@ class Converter {
   }
 
   const tinygltf::Model& model_;
-  const std::vector<SharedPixels>& image_pixels_;
+  const GltfImageStore& images_;
   const std::string& file_;
   const GltfDefects& defects_;
   GltfLoadResult& result_;
@@ -614,9 +614,8 @@ void deduplicate(std::vector<std::string>& warnings) {
 
 GltfDocument read_gltf_from_memory(const std::vector<std::uint8_t>& bytes, const std::string& display_name,
                                    const std::string& base_dir) {
-  GltfDocument document{display_name, {}, {}, {}};
-  document.model = parse_gltf(bytes, display_name, base_dir, document.defects);
-  document.image_pixels = take_image_pixels(document.model);
+  GltfDocument document{display_name, {}, {}, std::make_shared<GltfImageStore>()};
+  document.model = parse_gltf(bytes, display_name, base_dir, document.defects, *document.images);
   return document;
 }
 

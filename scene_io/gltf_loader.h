@@ -11,6 +11,7 @@
 #include "scene_io/gltf_animation.h"
 #include "scene_io/gltf_defects.h"
 #include "scene_io/gltf_extensions.h"
+#include "scene_io/gltf_image_store.h"
 #include "scene_io/gltf_skin.h"
 
 namespace tessera {
@@ -49,8 +50,9 @@ struct GltfDocument {
   std::string path;  // as given: errors name it
   tinygltf::Model model;
   GltfDefects defects;  // objects kept as placeholders: refused if used, else warned about
-  std::vector<std::shared_ptr<const std::vector<std::uint8_t>>> image_pixels;  // decoded, by image
-  double read_seconds = 0.0;  // read_gltf: reading, parsing, decoding images
+  // The images, encoded; each decoded when a converted scene first shows it, then shared.
+  std::shared_ptr<GltfImageStore> images;
+  double read_seconds = 0.0;  // read_gltf: reading and parsing (convert_gltf decodes images)
 };
 
 GltfDocument read_gltf(const std::string& path);

@@ -1,6 +1,8 @@
 // glTF materials, textures, samplers and decoded images -> plain descriptions.
 #include "scene_io/gltf_material.h"
 
+#include <algorithm>
+
 #include <fmt/format.h>
 
 #include "scene_io/gltf_images.h"
@@ -29,7 +31,8 @@ double number_of(const tinygltf::Value& object, const char* key, double fallback
   return object.Get(key).GetNumberAsDouble();
 }
 
-TextureRef texture_ref(const tinygltf::Model& model, const std::string& file, const GltfDefects& defects, int index,
+TextureRef texture_ref(const tinygltf::Model& model, const std::string& file, const GltfDefects& defects,
+                       const GltfImageStore& images, int index,
                        int texcoord, const tinygltf::ExtensionMap& extensions,
                        const std::string& what, std::vector<std::string>& warnings) {
   TextureRef ref;
@@ -38,7 +41,7 @@ TextureRef texture_ref(const tinygltf::Model& model, const std::string& file, co
     throw SceneLoadError(file, fmt::format("{} refers to texture {}, but the file has {}", what,
                                            index, count_of(model.textures.size(), "texture")));
   defects.check_used(fmt::format("texture {}", index), file);
-  const int source = texture_image(model, file, index, defects);
+  const int source = texture_image(model, file, index, defects, images);
   if (source < 0) {
     warnings.push_back(fmt::format("texture {} has no image tessera can decode; ignored", index));
     return ref;
@@ -66,11 +69,11 @@ TextureRef texture_ref(const tinygltf::Model& model, const std::string& file, co
 }
 
 Material convert_material(const tinygltf::Model& model, std::size_t i, const std::string& file,
-                          const GltfDefects& defects, std::vector<std::string>& warnings) {
+                          const GltfDefects& defects, const GltfImageStore& images, std::vector<std::string>& warnings) {
   const tinygltf::Material& m = model.materials[i];
   const std::string what = fmt::format("material {}", i);
   auto ref = [&](const tinygltf::TextureInfo& t, const char* slot) {
-    return texture_ref(model, file, defects, t.index, t.texCoord, t.extensions, what + " " + slot, warnings);
+    return texture_ref(model, file, defects, images, t.index, t.texCoord, t.extensions, what + " " + slot, warnings);
   };
   Material mat;
   mat.name = m.name;
@@ -82,7 +85,7 @@ Material convert_material(const tinygltf::Model& model, std::size_t i, const std
   mat.metallic_factor = static_cast<float>(pbr.metallicFactor);
   mat.roughness_factor = static_cast<float>(pbr.roughnessFactor);
   mat.metallic_roughness_texture = ref(pbr.metallicRoughnessTexture, "metallicRoughnessTexture");
-  mat.normal_texture = texture_ref(model, file, defects, m.normalTexture.index, m.normalTexture.texCoord,
+  mat.normal_texture = texture_ref(model, file, defects, images, m.normalTexture.index, m.normalTexture.texCoord,
                                    m.normalTexture.extensions, what + " normalTexture", warnings);
   mat.normal_scale = static_cast<float>(m.normalTexture.scale);
   if (m.emissiveFactor.size() == 3)
@@ -104,7 +107,7 @@ Material convert_material(const tinygltf::Model& model, std::size_t i, const std
   read_material_extensions(
       m,
       [&](int index, int texcoord, const tinygltf::ExtensionMap& ext, const std::string& slot) {
-        return texture_ref(model, file, defects, index, texcoord, ext, what + " " + slot, warnings);
+        return texture_ref(model, file, defects, images, index, texcoord, ext, what + " " + slot, warnings);
       },
       [&](const std::string& problem) { throw SceneLoadError(file, what + ": " + problem); }, mat);
   const bool finite = all_finite((mat.base_color_factor)) &&
@@ -129,49 +132,49 @@ const tinygltf::Sampler* texture_sampler(const tinygltf::Model& model, const std
 }
 
 std::vector<Material> convert_materials(const tinygltf::Model& model, const std::string& file,
-                                        const GltfDefects& defects, const std::vector<bool>& used,
-                                        std::vector<std::string>& warnings) {
+                                        const GltfDefects& defects, const GltfImageStore& images,
+                                        const std::vector<bool>& used, std::vector<std::string>& warnings) {
   std::vector<Material> out;
   for (std::size_t i = 0; i < model.materials.size(); ++i)
     out.push_back(defects.read_object(used[i], fmt::format("material {}", i), file, warnings,
-                                      [&] { return convert_material(model, i, file, defects, warnings); },
+                                      [&] { return convert_material(model, i, file, defects, images, warnings); },
                                       Material{}));
   return out;
 }
 
-std::vector<SharedPixels> take_image_pixels(tinygltf::Model& model) {
-  std::vector<SharedPixels> out;
-  for (tinygltf::Image& image : model.images)
-    out.push_back(image.image.empty() ? nullptr
-                                      : std::make_shared<const std::vector<std::uint8_t>>(std::move(image.image)));
+std::vector<int> images_shown(const std::vector<Material>& materials, const std::vector<bool>& used) {
+  std::vector<int> out;
+  for (std::size_t i = 0; i < materials.size(); ++i)
+    for (const TextureSlot& slot : texture_slots(materials[i]))
+      if (used[i] && slot.ref->present()) out.push_back(slot.ref->image);
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;
 }
 
-std::vector<Image> convert_images(const tinygltf::Model& model, const std::vector<SharedPixels>& pixels,
-                                  const std::string& file) {
-  std::vector<Image> out;
+std::vector<Image> convert_images(const tinygltf::Model& model, const GltfImageStore& images,
+                                  const std::vector<int>& shown, const std::string& file) {
+  images.decode(model, shown);
+  std::vector<Image> out(model.images.size());
   for (std::size_t i = 0; i < model.images.size(); ++i) {
     const tinygltf::Image& src = model.images[i];
-    Image img;
-    img.name = src.name.empty() ? src.uri.substr(0, 64) : src.name;
-    if (is_ktx2_image(src)) {  // left empty; texture_image refuses any texture showing it
-      out.push_back(std::move(img));
-      continue;
-    }
-    img.width = src.width;
-    img.height = src.height;
-    img.channels = src.component;
-    img.bits_per_channel = src.bits;
-    const bool valid_shape = src.width > 0 && src.height > 0 && src.component >= 1 &&
-                             src.component <= 4 &&
-                             (src.bits == 8 || src.bits == 16 || src.bits == 32);
-    const std::size_t expected = valid_shape ? static_cast<std::size_t>(src.width) * src.height *
-                                                   src.component * (src.bits / 8)
-                                             : 0;
-    if (!valid_shape || !pixels[i] || pixels[i]->size() != expected)
+    out[i].name = src.name.empty() ? src.uri.substr(0, 64) : src.name;
+  }
+  for (int i : shown) {  // texture_image has refused KTX2 and undecodable images
+    const DecodedImage d = images.decoded(i);
+    if (!d.problem.empty()) throw SceneLoadError(file, d.problem);
+    Image& img = out[static_cast<std::size_t>(i)];
+    const bool valid_shape = d.width > 0 && d.height > 0 && d.channels >= 1 && d.channels <= 4 &&
+                             (d.bits == 8 || d.bits == 16 || d.bits == 32);
+    const std::size_t expected =
+        valid_shape ? static_cast<std::size_t>(d.width) * d.height * d.channels * (d.bits / 8) : 0;
+    if (!valid_shape || !d.pixels || d.pixels->size() != expected)
       throw SceneLoadError(file, fmt::format("image {} ('{}') could not be decoded", i, img.name));
-    img.pixels = pixels[i];
-    out.push_back(std::move(img));
+    img.width = d.width;
+    img.height = d.height;
+    img.channels = d.channels;
+    img.bits_per_channel = d.bits;
+    img.pixels = d.pixels;
   }
   return out;
 }

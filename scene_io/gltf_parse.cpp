@@ -39,13 +39,13 @@ bool write_whole_file(std::string* err, const std::string&, const std::vector<un
   return false;
 }
 
-// Why image `i`, which tinygltf left undecoded, cannot be read; empty when it can (decoded
-// here as WebP, or a KTX2 image whose texture has a fallback).
-std::string unreadable_image(tinygltf::Image& image, std::size_t i, const std::string& base_dir) {
-  if (image.image.empty() && decode_webp_data_uri(image)) return "";
+// Why image `i`, whose bytes tinygltf did not hand to the store, cannot be read; empty when it
+// can (a WebP data URI, kept here, or a KTX2 image whose texture has a fallback).
+std::string unreadable_image(const tinygltf::Image& image, int i, const std::string& base_dir, GltfImageStore& store) {
+  if (store.kept(i) || keep_webp_data_uri(image, i, store)) return "";
   if (image.uri.rfind("data:image/webp;", 0) == 0)
     return fmt::format("image {} (data URI) could not be decoded: it is not a valid WebP image", i);
-  if (!image.image.empty() || image.uri.empty() || image.bufferView >= 0 || is_ktx2_image(image)) return "";
+  if (image.uri.empty() || image.bufferView >= 0 || is_ktx2_image(image)) return "";
   if (image.uri.rfind("data:", 0) == 0)  // a media type tinygltf does not decode
     return fmt::format("image {} has a data URI of media type '{}'; tessera reads PNG, JPEG and WebP images", i,
                        image.uri.substr(5, image.uri.find_first_of(";,") - 5));
@@ -57,9 +57,10 @@ std::string unreadable_image(tinygltf::Image& image, std::size_t i, const std::s
 }
 
 // tinygltf only warns about an external image it cannot open: a defect of the image.
-void check_external_images(tinygltf::Model& model, const std::string& base_dir, GltfDefects& defects) {
+void check_external_images(tinygltf::Model& model, const std::string& base_dir, GltfDefects& defects,
+                           GltfImageStore& store) {
   for (std::size_t i = 0; i < model.images.size(); ++i)
-    if (const std::string why = unreadable_image(model.images[i], i, base_dir); !why.empty()) {
+    if (const std::string why = unreadable_image(model.images[i], static_cast<int>(i), base_dir, store); !why.empty()) {
       defects.add(fmt::format("image {}", i), why);
       model.images[i].mimeType = kUndecodableImage;
     }
@@ -81,7 +82,7 @@ void restore_placeholders(tinygltf::Model& model, const GltfDefects& defects) {
 }  // namespace
 
 tinygltf::Model parse_gltf(const std::vector<std::uint8_t>& bytes, const std::string& name,
-                           const std::string& base_dir, GltfDefects& defects) {
+                           const std::string& base_dir, GltfDefects& defects, GltfImageStore& images) {
   GltfContainer container = check_gltf_container(bytes, name);
   if (container.trailing_bytes > 0)
     defects.notes.push_back(fmt::format("{} after the end its binary glTF header gives are ignored",
@@ -90,6 +91,7 @@ tinygltf::Model parse_gltf(const std::vector<std::uint8_t>& bytes, const std::st
     throw SceneLoadError(name, "is larger than 4 GiB, more than tinygltf can read");
   // Compressed files: tinygltf reads a rewritten JSON (gltf_prepare.h), in a rebuilt .glb.
   ImageLoadContext ctx;
+  ctx.store = &images;
   const std::optional<std::string> prepared = prepare_gltf_json(
       container.json, name, {container.binary, container.bin_chunk_size, base_dir}, defects, ctx.declared);
   std::vector<std::uint8_t> rebuilt;
@@ -125,9 +127,12 @@ tinygltf::Model parse_gltf(const std::vector<std::uint8_t>& bytes, const std::st
   if (model.asset.version.rfind("2.", 0) != 0)
     throw SceneLoadError(name, fmt::format("is glTF version '{}'; tessera reads version 2.x",
                                            model.asset.version));
-  decode_pending_images(model, ctx);
-  for (const auto& [index, problem] : ctx.defective) defects.add(fmt::format("image {}", index), problem);
-  check_external_images(model, base_dir, defects);
+  decode_unrecognised_images(model, ctx);
+  for (const auto& [index, problem] : ctx.defective) {
+    defects.add(fmt::format("image {}", index), problem);
+    model.images[static_cast<std::size_t>(index)].mimeType = kUndecodableImage;
+  }
+  check_external_images(model, base_dir, defects, images);
   restore_placeholders(model, defects);
   decode_meshopt_views(model, name);  // first: a Draco stream may sit in a meshopt view
   decode_draco_primitives(model, name);

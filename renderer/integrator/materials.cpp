@@ -8,23 +8,6 @@ namespace tessera {
 
 namespace {
 
-// Every texture of a material, with the encoding it is read in (colours sRGB, data linear).
-struct TextureSlot {
-  const TextureRef* ref;
-  bool srgb;
-};
-
-std::array<TextureSlot, 18> texture_slots(const Material& m) {
-  return {{{&m.base_color_texture, true}, {&m.emissive_texture, true}, {&m.specular_color_texture, true},
-           {&m.sheen_color_texture, true}, {&m.diffuse_transmission_color_texture, true},
-           {&m.metallic_roughness_texture, false}, {&m.normal_texture, false}, {&m.transmission_texture, false},
-           {&m.thickness_texture, false}, {&m.specular_texture, false}, {&m.clearcoat_texture, false},
-           {&m.clearcoat_roughness_texture, false}, {&m.sheen_roughness_texture, false},
-           {&m.clearcoat_normal_texture, false}, {&m.anisotropy_texture, false},
-           {&m.diffuse_transmission_texture, false}, {&m.iridescence_texture, false},
-           {&m.iridescence_thickness_texture, false}}};
-}
-
 bool textured(const Material& m) {
   for (const TextureSlot& slot : texture_slots(m))
     if (slot.ref->present()) return true;
@@ -37,9 +20,12 @@ MaterialTable::MaterialTable(const SceneDescription& scene) : materials_(scene.m
   srgb_.resize(scene.images.size());
   linear_.resize(scene.images.size());
   std::vector<std::uint8_t> need_srgb(scene.images.size()), need_linear(scene.images.size());
+  // An image without pixels is one no used material shows (scene_io decodes only those): a
+  // material the scene does not use may still name it.
   for (const Material& m : materials_)
     for (const TextureSlot& slot : texture_slots(m))
-      if (slot.ref->present()) (slot.srgb ? need_srgb : need_linear)[slot.ref->image] = 1;
+      if (slot.ref->present() && scene.images[slot.ref->image].pixels)
+        (slot.srgb ? need_srgb : need_linear)[slot.ref->image] = 1;
   // Each image in each encoding it is read in, all at once (make_texture_image splits rows too).
   tbb::parallel_for(std::size_t{0}, 2 * scene.images.size(), [&](std::size_t k) {
     const std::size_t i = k / 2;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -136,6 +137,22 @@ struct Material {
   // KHR_materials_unlit: baseColor is shown as is, no light reaches it
   bool unlit = false;
 };
+
+// Every texture of a material, with the encoding it is read in (colours sRGB, data linear).
+struct TextureSlot {
+  const TextureRef* ref;
+  bool srgb;
+};
+inline std::array<TextureSlot, 18> texture_slots(const Material& m) {
+  return {{{&m.base_color_texture, true}, {&m.emissive_texture, true}, {&m.specular_color_texture, true},
+           {&m.sheen_color_texture, true}, {&m.diffuse_transmission_color_texture, true},
+           {&m.metallic_roughness_texture, false}, {&m.normal_texture, false}, {&m.transmission_texture, false},
+           {&m.thickness_texture, false}, {&m.specular_texture, false}, {&m.clearcoat_texture, false},
+           {&m.clearcoat_roughness_texture, false}, {&m.sheen_roughness_texture, false},
+           {&m.clearcoat_normal_texture, false}, {&m.anisotropy_texture, false},
+           {&m.diffuse_transmission_texture, false}, {&m.iridescence_texture, false},
+           {&m.iridescence_thickness_texture, false}}};
+}
 
 // A vertex attribute or index array: on the heap as a std::vector's, except where the
 // renderer lays its world-space copies out together (renderer/scene_geometry.h).
