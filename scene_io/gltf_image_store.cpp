@@ -11,25 +11,22 @@ namespace tessera {
 
 void GltfImageStore::keep(int index, std::vector<unsigned char> bytes) {
   if (index < 0) return;
-  if (static_cast<std::size_t>(index) >= index_.size()) index_.resize(static_cast<std::size_t>(index) + 1, -1);
-  if (index_[index] < 0) {
-    index_[index] = static_cast<int>(entries_.size());
-    entries_.emplace_back();
-  }
-  entries_[static_cast<std::size_t>(index_[index])] = Entry{std::move(bytes), false, {}};
+  if (static_cast<std::size_t>(index) >= entries_.size()) entries_.resize(static_cast<std::size_t>(index) + 1);
+  entries_[static_cast<std::size_t>(index)] = Entry{true, std::move(bytes), false, {}};
 }
 
 bool GltfImageStore::kept(int index) const { return find(index) != nullptr; }
 
 GltfImageStore::Entry* GltfImageStore::find(int index) const {
-  if (index < 0 || static_cast<std::size_t>(index) >= index_.size() || index_[index] < 0) return nullptr;
-  return &entries_[static_cast<std::size_t>(index_[index])];
+  if (index < 0 || static_cast<std::size_t>(index) >= entries_.size()) return nullptr;
+  Entry& e = entries_[static_cast<std::size_t>(index)];
+  return e.kept ? &e : nullptr;
 }
 
 void GltfImageStore::decode(const tinygltf::Model& model, const std::vector<int>& indices) const {
   const std::lock_guard<std::mutex> lock(mutex_);
   std::vector<std::pair<int, Entry*>> todo;
-  std::vector<char> queued(index_.size());
+  std::vector<char> queued(entries_.size());
   for (int i : indices)
     if (Entry* e = find(i); e && !e->done && !queued[static_cast<std::size_t>(i)]) {
       queued[static_cast<std::size_t>(i)] = 1;
@@ -46,9 +43,8 @@ void GltfImageStore::decode(const tinygltf::Model& model, const std::vector<int>
       e.image = {std::make_shared<const std::vector<std::uint8_t>>(std::move(image.image)), image.width, image.height,
                  image.component, image.bits, ""};
     } else {
-      const std::string source =
-          static_cast<std::size_t>(index) < model.images.size() ? gltf_image_source(model.images[index]) : "data";
-      e.image.problem = fmt::format("image {} ({}) could not be decoded: {}", index, source, problem);
+      e.image.problem = fmt::format("image {} ({}) could not be decoded: {}", index,
+                                    gltf_image_source(model.images.at(static_cast<std::size_t>(index))), problem);
     }
     std::vector<unsigned char>().swap(e.bytes);
     e.done = true;

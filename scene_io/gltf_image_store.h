@@ -39,14 +39,14 @@ class GltfImageStore {
 
  private:
   struct Entry {
+    bool kept = false;
     std::vector<unsigned char> bytes;  // freed once decoded
     bool done = false;
     DecodedImage image;
   };
   Entry* find(int index) const;  // null for an image not kept
 
-  std::vector<int> index_;  // by image index: where its entry is in entries_, or -1
-  mutable std::vector<Entry> entries_;
+  mutable std::vector<Entry> entries_;  // by image index
   mutable std::mutex mutex_;
 };
 

@@ -145,8 +145,9 @@ std::vector<Material> convert_materials(const tinygltf::Model& model, const std:
 std::vector<int> images_shown(const std::vector<Material>& materials, const std::vector<bool>& used) {
   std::vector<int> out;
   for (std::size_t i = 0; i < materials.size(); ++i)
-    for (const TextureSlot& slot : texture_slots(materials[i]))
-      if (used[i] && slot.ref->present()) out.push_back(slot.ref->image);
+    if (used[i])
+      for (const TextureSlot& slot : texture_slots(materials[i]))
+        if (slot.ref->present()) out.push_back(slot.ref->image);
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;
