@@ -64,7 +64,8 @@ std::string gltf_image_source(const tinygltf::Image& image);
 // leaves undecoded) in `store`. False when the URI is not one or does not hold WebP bytes.
 bool keep_webp_data_uri(const tinygltf::Image& image, int index, GltfImageStore& store);
 
-// True for a KTX2 image, which load_gltf_image leaves undecoded, and for one it could not decode.
+// True for a KTX2 image, which load_gltf_image leaves undecoded, and for one parsing marked
+// undecodable (bytes that contradict their media type, or of no format and no decoder).
 bool is_ktx2_image(const tinygltf::Image& image);
 
 // The image texture `index` shows: EXT_texture_webp's source, else `source` (for
