@@ -7,11 +7,13 @@
 # (NSRC=1) or over the noisy colour and tessera's denoised image (NSRC=2, 2 KS^2 weights), from
 # log colour, log denoised colour, albedo, normal, log depth and the half buffers' relative
 # variance. Loss: squared error relative to the denoised image's square (plus 0.01), against
-# 64 spp targets of another seed (render_pairs.sh), clamped at 4 per pixel. Every 50 steps it
-# prints the relative MSE on the test frame against its reference.
+# 64 spp targets of another seed (render_pairs.sh; clipped at 50), clamped at 4 per pixel;
+# Adam, learning rate LR, cut to 0.3x at 70% of the steps. Every 50 steps it
+# prints the relative MSE on the test frame against its reference and writes the network's
+# output on it as DATA_DIR/test-output.exr (and the network as DATA_DIR/net.pt).
 #   train.py DATA_DIR TEST_16SPP_DENOISED.exr REFERENCE.exr EDGE_MASK.exr
 # (the test files as tools/denoise-quality.sh writes them); STEPS, LR, NSRC, KS, CH, THREADS from
-# the environment.
+# the environment; LOAD=NET.pt STEPS=0 evaluates a trained network on other test frames.
 import glob, os, sys, time, math, numpy as np, torch, torch.nn as nn, torch.nn.functional as F
 import OpenImageIO as oiio
 torch.set_num_threads(int(os.environ.get('THREADS', '2'))); torch.manual_seed(0); np.random.seed(0)
@@ -66,7 +68,13 @@ def refresh():
             t = np.minimum(stack(load(f), ['R', 'G', 'B']), 50.0).astype(np.float32)
             data[name] = (x, c, nf, t)
         except Exception as ex: print('skip', name, ex)
-net = Net(); opt = torch.optim.Adam(net.parameters(), lr=float(os.environ.get('LR', '1e-3')))
+def write_rgb(path, chw):
+    out = oiio.ImageOutput.create(path)
+    out.open(path, oiio.ImageSpec(chw.shape[2], chw.shape[1], 3, 'float'))
+    out.write_image(np.ascontiguousarray(chw.transpose(1, 2, 0))); out.close()
+net = Net()
+if os.environ.get('LOAD'): net.load_state_dict(torch.load(os.environ['LOAD']))  # with STEPS=0: evaluate a trained network
+opt = torch.optim.Adam(net.parameters(), lr=float(os.environ.get('LR', '1e-3')))
 P = int(os.environ.get('P', '64')); BATCH = 8; steps = int(os.environ.get('STEPS', '1500'))
 def evaluate():
     with torch.no_grad():
@@ -78,7 +86,10 @@ for step in range(steps + 1):
         refresh()
         r, re, out = evaluate()
         print('step %d images %d loss %.4e test %.3e edges %.3e  %.0fs' % (step, len(data), run / 50, r, re, time.time() - t0), flush=True)
-        run = 0; torch.save(net.state_dict(), os.path.join(sys.argv[1], 'net.pt')); np.save(os.path.join(sys.argv[1], 'test_out.npy'), out)
+        run = 0
+        write_rgb(os.path.join(sys.argv[1], 'test-output.exr'), out)
+        if steps > 0: torch.save(net.state_dict(), os.path.join(sys.argv[1], 'net.pt'))
+    if step == steps: break
     names = list(data); xs, cs, ns, ts = [], [], [], []
     for b in range(BATCH):
         x, c, nf, t = data[names[np.random.randint(len(names))]]
