@@ -8,25 +8,21 @@
 #   feature_control_variate.py INPUT_16SPP.exr REFERENCE.exr EDGE_MASK.exr
 # (INPUT with --aov albedo,normal,halves; the reference with --aov albedo,normal; the mask as
 # tools/denoise-quality.sh writes it.)
-import sys, numpy as np, OpenImageIO as oiio
-def load(path):
-    inp = oiio.ImageInput.open(path); spec = inp.spec(); px = inp.read_image(format="float"); inp.close()
-    names = list(spec.channelnames)
-    return {n: px[:, :, i] for i, n in enumerate(names)}
-def get(d, prefix, chans): return np.stack([d[prefix + c] for c in chans], -1)
-noisy, ref = load(sys.argv[1]), load(sys.argv[2])
-edges = load(sys.argv[3]) if len(sys.argv) > 3 else None
-R = get(ref, '', 'RGB')
-def relmse(x, mask=None):
-    e = ((x - R) ** 2 / (R ** 2 + 1e-2)).mean(-1)
-    return e.mean() if mask is None else e[mask].mean()
-m = edges['Y'] > 0.5 if edges else None
-feat = lambda pre: np.concatenate([get(noisy, pre + 'Albedo.', 'RGB'), get(noisy, pre + 'N.', 'XYZ')], -1)
-fe, fo = feat('even.'), feat('odd.')
-fref = np.concatenate([get(ref, 'Albedo.', 'RGB'), get(ref, 'N.', 'XYZ')], -1)
-ce, co = get(noisy, 'even.', 'RGB'), get(noisy, 'odd.', 'RGB')
+import os, sys
+import numpy as np
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+import image_metrics as im
+
+noisy_path, ref_path, mask_path = sys.argv[1:4]
+R = im.read(ref_path, ["R", "G", "B"])
+m = im.read_mask(mask_path, R.shape[:2])
+read3 = lambda path, prefix, chans: im.read(path, [prefix + c for c in chans])
+feat = lambda path, pre: np.concatenate([read3(path, pre + 'Albedo.', 'RGB'), read3(path, pre + 'N.', 'XYZ')], -1)
+fe, fo = feat(noisy_path, 'even.'), feat(noisy_path, 'odd.')
+fref = feat(ref_path, '')
+ce, co = read3(noisy_path, 'even.', 'RGB'), read3(noisy_path, 'odd.', 'RGB')
 c = 0.5 * (ce + co)
-print('16spp', relmse(c), relmse(c, m))
+print('16 spp: relMSE %.3e, in edges %.3e' % (im.relmse(c, R), im.relmse(c, R, m)))
 dc, df = ce - co, fe - fo
 H, W, F = df.shape
 def box(a, r):
@@ -46,4 +42,4 @@ for r in (1, 2, 3):
         corr = lambda f: np.einsum('hwf,hwfc->hwc', f - fref, B)
         cv = 0.5 * ((ce - corr(fe)) + (co - corr(fo)))
         cv = np.maximum(cv, 0)
-        print(f'cv r={r} lam={lam}', relmse(cv), relmse(cv, m))
+        print('corrected, box %dx%d, ridge %g: relMSE %.3e, in edges %.3e' % (2 * r + 1, 2 * r + 1, lam, im.relmse(cv, R), im.relmse(cv, R, m)))

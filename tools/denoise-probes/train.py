@@ -16,6 +16,8 @@
 # the environment; LOAD=NET.pt STEPS=0 evaluates a trained network on other test frames.
 import glob, os, sys, time, math, numpy as np, torch, torch.nn as nn, torch.nn.functional as F
 import OpenImageIO as oiio
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), '..'))
+import image_metrics as im
 torch.set_num_threads(int(os.environ.get('THREADS', '2'))); torch.manual_seed(0); np.random.seed(0)
 NSRC = int(os.environ.get('NSRC', '1')); K = int(os.environ.get('KS', '9')); CH = int(os.environ.get('CH', '32'))
 def load(path):
@@ -50,13 +52,12 @@ class Net(nn.Module):
         pn = F.unfold(F.pad(nf, [K // 2] * 4, mode='replicate'), K).view(B, 3, K * K, H, W)
         p = torch.cat([pc, pn], 2) if NSRC == 2 else pc
         return (p * w[:, None]).sum(2)
-def relmse(x, ref, mask=None):
-    e = ((x - ref) ** 2 / (ref ** 2 + 1e-2)).mean(0)
-    return float(e.mean() if mask is None else e[mask].mean())
+def relmse(x, ref, mask=None):  # on channels-first arrays
+    return im.relmse(x.transpose(1, 2, 0), ref.transpose(1, 2, 0), mask)
 # test: the grid, 16 spp seed 1 (noisy + NFOR + features), against the 1024 spp reference
 tx, tc, tn = features(load(sys.argv[2]))
 tref = stack(load(sys.argv[3]), ['R', 'G', 'B'])
-tmask = load(sys.argv[4])['Y'] > 0.5
+tmask = im.read_mask(sys.argv[4], tref.shape[1:])
 print('test: noisy %.3e nfor %.3e (edges %.3e)' % (relmse(tc, tref), relmse(tn, tref), relmse(tn, tref, tmask)), flush=True)
 data = {}
 def refresh():
