@@ -71,6 +71,7 @@ def write(path, px, channels):
     spec = oiio.ImageSpec(w, h, c, "float" if exr else "uint8")
     spec.channelnames = tuple(channels)
     data = px.astype(np.float32) if exr else np.clip(np.rint(px * 255), 0, 255).astype(np.uint8)
+    data = np.ascontiguousarray(data)  # OpenImageIO writes a strided view (a transpose) as garbage
     out = oiio.ImageOutput.create(path)
     if out is None or not out.open(path, spec) or not out.write_image(data) or not out.close():
         raise Bad(f"{path}: cannot write: {oiio.geterror()}")

@@ -8,6 +8,14 @@ import OpenImageIO as oiio
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 import image_metrics as im
 
+def display(rgb):
+    """Linear RGB (h, w, 3) to sRGB display values in [0, 1], by OpenImageIO's colorconvert."""
+    h, w, _ = rgb.shape
+    buf = oiio.ImageBuf(oiio.ImageSpec(w, h, 3, "float"))
+    if not buf.set_pixels(oiio.ROI(0, w, 0, h), np.ascontiguousarray(np.clip(rgb, 0, None), dtype=np.float32)):
+        sys.exit(f"cannot convert for display: {buf.geterror()}")
+    return np.clip(oiio.ImageBufAlgo.colorconvert(buf, "linear", "sRGB").get_pixels(oiio.FLOAT), 0, 1)
+
 def main(out, box, ref_path, frames):
     x0, y0, x1, y1 = (int(v) for v in box.split(","))
     ref = im.read(ref_path, ["R", "G", "B"])[y0:y1, x0:x1]
@@ -16,9 +24,7 @@ def main(out, box, ref_path, frames):
         label, _, rest = spec.partition("=")
         path, _, channels = rest.partition(":")
         img = im.read(path, (channels or "R,G,B").split(","))[y0:y1, x0:x1]
-        shown = np.clip(img, 0, None)
-        shown = np.where(shown <= 0.0031308, 12.92 * shown, 1.055 * np.power(shown, 1 / 2.4) - 0.055).clip(0, 1)
-        shown = shown.repeat(2, 0).repeat(2, 1)
+        shown = display(img).repeat(2, 0).repeat(2, 1)
         err = im.error_map(img.repeat(2, 0).repeat(2, 1), ref.repeat(2, 0).repeat(2, 1))
         w = max(shown.shape[1], err.shape[1])
         col = np.zeros((24 + shown.shape[0] + err.shape[0], w, 3), np.float32)

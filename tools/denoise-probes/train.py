@@ -13,8 +13,9 @@
 # output on it as DATA_DIR/test-output.exr (and the network as DATA_DIR/net.pt).
 #   train.py DATA_DIR TEST_16SPP_DENOISED.exr REFERENCE.exr EDGE_MASK.exr
 # (the test files as tools/denoise-quality.sh writes them); STEPS, LR, NSRC, KS, CH, THREADS from
-# the environment; LOAD=NET.pt STEPS=0 evaluates a trained network on other test frames.
-import glob, os, sys, time, math, numpy as np, torch, torch.nn as nn, torch.nn.functional as F
+# the environment (also P, the patch size, 64, and LCLAMP, the loss clamp, 4); LOAD=NET.pt
+# STEPS=0 evaluates a trained network on other test frames.
+import glob, os, sys, time, numpy as np, torch, torch.nn as nn, torch.nn.functional as F
 import OpenImageIO as oiio
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), '..'))
 import image_metrics as im
@@ -46,7 +47,7 @@ class Net(nn.Module):
     def forward(self, x, c, nf):
         h = F.relu(F.group_norm(self.inp(x), 4))
         for m in self.mid: h = F.relu(F.group_norm(m(h), 4))
-        w = torch.softmax(4.0 * torch.tanh(self.out(h) / 4.0), 1)  # B 2KK H W
+        w = torch.softmax(4.0 * torch.tanh(self.out(h) / 4.0), 1)  # B, NSRC K^2, H, W
         B, _, H, W = c.shape
         pc = F.unfold(F.pad(c, [K // 2] * 4, mode='replicate'), K).view(B, 3, K * K, H, W)
         pn = F.unfold(F.pad(nf, [K // 2] * 4, mode='replicate'), K).view(B, 3, K * K, H, W)
@@ -69,10 +70,6 @@ def refresh():
             t = np.minimum(stack(load(f), ['R', 'G', 'B']), 50.0).astype(np.float32)
             data[name] = (x, c, nf, t)
         except Exception as ex: print('skip', name, ex)
-def write_rgb(path, chw):
-    out = oiio.ImageOutput.create(path)
-    out.open(path, oiio.ImageSpec(chw.shape[2], chw.shape[1], 3, 'float'))
-    out.write_image(np.ascontiguousarray(chw.transpose(1, 2, 0))); out.close()
 net = Net()
 if os.environ.get('LOAD'): net.load_state_dict(torch.load(os.environ['LOAD']))  # with STEPS=0: evaluate a trained network
 opt = torch.optim.Adam(net.parameters(), lr=float(os.environ.get('LR', '1e-3')))
@@ -88,7 +85,7 @@ for step in range(steps + 1):
         r, re, out = evaluate()
         print('step %d images %d loss %.4e test %.3e edges %.3e  %.0fs' % (step, len(data), run / 50, r, re, time.time() - t0), flush=True)
         run = 0
-        write_rgb(os.path.join(sys.argv[1], 'test-output.exr'), out)
+        im.write(os.path.join(sys.argv[1], 'test-output.exr'), out.transpose(1, 2, 0), ['R', 'G', 'B'])
         if steps > 0: torch.save(net.state_dict(), os.path.join(sys.argv[1], 'net.pt'))
     if step == steps: break
     names = list(data); xs, cs, ns, ts = [], [], [], []
