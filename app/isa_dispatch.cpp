@@ -10,8 +10,8 @@
 
 #include <fmt/format.h>
 
-#include "app/exit_codes.h"
-#include "renderer/isa.h"
+#include "app/cli/exit_codes.h"
+#include "renderer/util/isa.h"
 
 namespace tessera {
 namespace {

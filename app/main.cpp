@@ -1,4 +1,4 @@
-// tessera: a path tracer for glTF 2.0 scenes. Exit codes: see app/exit_codes.h.
+// tessera: a path tracer for glTF 2.0 scenes. Exit codes: see app/cli/exit_codes.h.
 #include <cstdio>
 #include <exception>
 #include <memory>
@@ -7,16 +7,16 @@
 
 #include <fmt/format.h>
 
-#include "app/command_line.h"
-#include "app/command_parser.h"
-#include "app/commands.h"
-#include "app/exit_codes.h"
-#include "app/interrupt.h"
+#include "app/cli/command_line.h"
+#include "app/cli/command_parser.h"
+#include "app/commands/commands.h"
+#include "app/cli/exit_codes.h"
+#include "app/terminal/interrupt.h"
 #include "app/isa_dispatch.h"
-#include "renderer/image_input.h"
-#include "renderer/image_output.h"
-#include "renderer/mpi_ranks.h"
-#include "renderer/resume_layers.h"
+#include "imageio/image_input.h"
+#include "imageio/image_output.h"
+#include "renderer/parallel/mpi_ranks.h"
+#include "imageio/resume_layers.h"
 #include "scene_io/load_error.h"
 
 int main(int argc, char** argv) {

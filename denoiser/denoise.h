@@ -81,7 +81,7 @@ struct DenoiseParams {
   // at 16 spp on the three scenes of docs/performance.md. Divided by this (1.1 to 1.28
   // measured: higher favours DamagedHelmet and the grid, lower the Cornell box), the noisy
   // colour's error is not overstated nor the filters' (which subtract it) understated. 1 for
-  // independent halves: the app takes it from the frame's sampler (denoise_params in app/frame_denoise.h).
+  // independent halves: the app takes it from the frame's sampler (denoise_params in app/frame/frame_denoise.h).
   float half_variance_bias = 1.15f;  // each pixel blends the candidates' weights over its (2 r + 1)^2 box
   // Albedo demodulation (denoiser/demodulate.h): the regression filters colour / (albedo +
   // epsilon). 0.1 rather than 0.01: at an edge or under depth of field the mean albedo is noisy

@@ -16,7 +16,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
-#include "renderer/math.h"
+#include "renderer/util/math.h"
 #include "scene_io/gltf_accessor.h"
 #include "scene_io/gltf_hierarchy.h"
 #include "scene_io/gltf_images.h"

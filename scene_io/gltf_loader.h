@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "renderer/scene/scene.h"
+#include "renderer/description/scene.h"
 #include "scene_io/gltf_animation.h"
 #include "scene_io/gltf_defects.h"
 #include "scene_io/gltf_extensions.h"

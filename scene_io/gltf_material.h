@@ -7,7 +7,7 @@
 
 #include <tiny_gltf.h>
 
-#include "renderer/scene/scene.h"
+#include "renderer/description/scene.h"
 #include "scene_io/gltf_defects.h"
 #include "scene_io/gltf_image_store.h"
 

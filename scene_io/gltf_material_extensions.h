@@ -7,7 +7,7 @@
 
 #include <tiny_gltf.h>
 
-#include "renderer/scene/scene.h"
+#include "renderer/description/scene.h"
 
 namespace tessera {
 

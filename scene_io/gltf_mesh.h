@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "renderer/scene/scene.h"
+#include "renderer/description/scene.h"
 #include "scene_io/gltf_accessor.h"
 
 namespace tessera {

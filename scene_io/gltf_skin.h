@@ -11,7 +11,7 @@
 #include <glm/glm.hpp>
 #include <tiny_gltf.h>
 
-#include "renderer/scene/scene.h"
+#include "renderer/description/scene.h"
 #include "scene_io/gltf_accessor.h"
 
 namespace tessera {

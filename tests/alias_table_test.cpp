@@ -7,7 +7,7 @@
 #include <limits>
 #include <random>
 
-#include "renderer/alias_table.h"
+#include "renderer/sampling/alias_table.h"
 #include "tests/uneven_weights.h"
 
 namespace tessera {

@@ -1,4 +1,4 @@
-// The `--background auto` rule (app/auto_background.h): black only when the scene's own
+// The `--background auto` rule (app/frame/auto_background.h): black only when the scene's own
 // lights can light it. Expected powers are worked out by hand from the geometry:
 // tests/data/bulb_on_body.gltf (validator-clean) is a 2 m box with a 2 cm single-sided
 // emissive square (radiance 1) 1 cm above it, so its emitters give pi x 0.0004 against
@@ -7,7 +7,7 @@
 
 #include <string>
 
-#include "app/auto_background.h"
+#include "app/frame/auto_background.h"
 #include "scene_io/gltf_loader.h"
 #include "tests/exr_read.h"
 #include "tests/scene_builders.h"

@@ -9,7 +9,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "renderer/render_scene.h"
+#include "renderer/scene/render_scene.h"
 #include "tests/scene_builders.h"
 
 namespace tessera {

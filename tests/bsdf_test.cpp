@@ -5,9 +5,9 @@
 #include <cmath>
 #include <string>
 
-#include "renderer/integrator/bsdf.h"
-#include "renderer/integrator/microfacet_albedo.h"
-#include "renderer/sampler.h"
+#include "renderer/bsdfs/bsdf.h"
+#include "renderer/bsdfs/microfacet_albedo.h"
+#include "renderer/sampling/sampler.h"
 #include "tests/chi_square.h"
 
 namespace tessera {

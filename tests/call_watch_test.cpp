@@ -1,7 +1,7 @@
-// CallWatch (renderer/call_watch.h): a call that outlasts the timeout gets one verdict, no
+// CallWatch (renderer/parallel/call_watch.h): a call that outlasts the timeout gets one verdict, no
 // sooner than the timeout and at most a look (50 ms) plus scheduling later; time between
 // calls, calls shorter than the timeout and time the process was stopped never do.
-#include "renderer/call_watch.h"
+#include "renderer/parallel/call_watch.h"
 
 #include <gtest/gtest.h>
 

@@ -8,10 +8,11 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "renderer/camera_coverage.h"
-#include "renderer/render.h"
+#include "renderer/camera/camera_coverage.h"
+#include "renderer/render/render.h"
 #include "tests/same_bits.h"
 #include "tests/scene_builders.h"
+#include "imageio/environment_image.h"
 
 namespace tessera {
 namespace {
@@ -304,6 +305,7 @@ TEST(CameraCoverage, MotionBlurRendersTheSameWithAStillOrAMovingCamera) {
 TEST(CameraCoverage, EnvironmentImageAndNonFiniteBackgroundRenderTheSame) {
   EnvironmentParams env;
   env.image_path = std::string(TESSERA_SOURCE_DIR) + "/scenes/env/spruit_sunrise_1k.hdr";
+  env.image = read_environment_image(env.image_path);
   env.rotate_degrees = 30.0f;
   const RenderScene lit(product_shot(), env);
   expect_same_render_with_fewer_rays(lit, test::look_at({0, 0, 5}, {0, 0, 0}, 40.0f), small_settings());

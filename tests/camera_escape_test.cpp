@@ -10,6 +10,7 @@
 
 #include "renderer/integrator/path_tracer.h"
 #include "tests/scene_builders.h"
+#include "imageio/environment_image.h"
 
 namespace tessera {
 namespace {
@@ -55,6 +56,7 @@ TEST(CameraEscape, UniformBackgroundAsThePathTracerSeesIt) {
 TEST(CameraEscape, EnvironmentImageAsThePathTracerSeesIt) {
   EnvironmentParams env;
   env.image_path = std::string(TESSERA_SOURCE_DIR) + "/scenes/env/spruit_sunrise_1k.hdr";
+  env.image = read_environment_image(env.image_path);
   env.scale = 3.0f;
   env.rotate_degrees = 40.0f;
   expect_same_as_path(scene_with(env), {});

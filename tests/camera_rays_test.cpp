@@ -8,7 +8,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "renderer/camera.h"
+#include "renderer/camera/camera.h"
 #include "tests/scene_builders.h"
 
 namespace tessera {

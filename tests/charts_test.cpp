@@ -1,4 +1,4 @@
-// The charts tessera draws with Cairo (app/chart.h): what the heat map and the scaling plot
+// The charts tessera draws with Cairo (app/profile/chart.h): what the heat map and the scaling plot
 // show (cell colours from known tile costs, the colour bar's range and unit, the plotted
 // points and legend), the viridis colours from OpenImageIO, ticks, and the files written.
 #include <gtest/gtest.h>
@@ -8,10 +8,10 @@
 
 #include <OpenImageIO/imageio.h>
 
-#include "app/colormap.h"
-#include "app/heatmap.h"
-#include "app/scaling_plot.h"
-#include "renderer/image_output.h"
+#include "app/profile/colormap.h"
+#include "app/profile/heatmap.h"
+#include "app/profile/scaling_plot.h"
+#include "imageio/image_output.h"
 #include "tests/test_support.h"
 
 namespace tessera {

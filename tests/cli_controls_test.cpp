@@ -11,7 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "renderer/image_input.h"
+#include "imageio/image_input.h"
 #include "tests/exr_read.h"
 #include "tests/test_support.h"
 

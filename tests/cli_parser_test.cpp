@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "app/nearest_name.h"
+#include "app/cli/nearest_name.h"
 #include "tests/test_support.h"
 
 namespace tessera {

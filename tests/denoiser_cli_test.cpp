@@ -23,7 +23,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include "denoiser/denoise.h"
-#include "renderer/display_transform.h"
+#include "imageio/display_transform.h"
 #include "tests/test_support.h"
 
 namespace tessera {

@@ -1,4 +1,4 @@
-// The view transform of display-format previews (renderer/display_transform.*): the built-in
+// The view transform of display-format previews (imageio/display_transform.*): the built-in
 // views against their formulas, a studio's OCIO config against OCIO's own processor and the
 // config's own formula, and the command line end to end.
 #include <gtest/gtest.h>
@@ -9,7 +9,7 @@
 #include <OpenColorIO/OpenColorIO.h>
 #include <OpenImageIO/imageio.h>
 
-#include "renderer/display_transform.h"
+#include "imageio/display_transform.h"
 #include "tests/exr_read.h"
 #include "tests/test_support.h"
 

@@ -8,7 +8,7 @@
 #include <limits>
 #include <random>
 
-#include "renderer/distribution.h"
+#include "renderer/sampling/distribution.h"
 #include "tests/uneven_weights.h"
 
 namespace tessera {

@@ -7,12 +7,13 @@
 
 #include <OpenImageIO/imageio.h>
 
-#include "renderer/environment.h"
-#include "renderer/render.h"
-#include "renderer/sampler.h"
+#include "renderer/lights/environment.h"
+#include "renderer/render/render.h"
+#include "renderer/sampling/sampler.h"
 #include "tests/chi_square.h"
 #include "tests/scene_builders.h"
 #include "tests/test_support.h"
+#include "imageio/environment_image.h"
 
 namespace tessera {
 namespace {
@@ -77,6 +78,7 @@ TEST(Environment, ImportanceSamplingMatchesItsPdfChiSquare) {
   for (float rotate : {0.0f, 70.0f}) {
     EnvironmentParams p;
     p.image_path = write_test_environment("env-chi2");
+    p.image = read_environment_image(p.image_path);
     p.rotate_degrees = rotate;
     const Environment env(p);
     auto sample = [&](int i) -> std::optional<glm::vec3> {
@@ -102,6 +104,7 @@ TEST(Environment, ImportanceSamplingMatchesItsPdfChiSquare) {
 TEST(Environment, LambertianFloorUnderTheSkyMatchesQuadrature) {
   EnvironmentParams p;
   p.image_path = write_test_environment("env-floor");
+  p.image = read_environment_image(p.image_path);
   SceneDescription scene;
   test::add_mesh(scene, test::make_quad({0, 0, 0}, {50, 0, 0}, {0, 0, -50}, test::add_material(scene, test::diffuse(vec3(1.0f)))));
   RenderScene rs(std::move(scene), p);

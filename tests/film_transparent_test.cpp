@@ -7,8 +7,8 @@
 #include <cmath>
 #include <limits>
 
-#include "renderer/pixel_filter.h"
-#include "renderer/render.h"
+#include "renderer/camera/pixel_filter.h"
+#include "renderer/render/render.h"
 #include "tests/scene_builders.h"
 
 namespace tessera {

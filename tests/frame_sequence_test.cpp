@@ -1,4 +1,4 @@
-// Frame sequences (app/frame_sequence.*, tessera render --frames): the numbered names, the
+// Frame sequences (app/frame/frame_sequence.*, tessera render --frames): the numbered names, the
 // frames' headers, --skip-existing, and an interrupted sequence continued to the same bits.
 #include <gtest/gtest.h>
 
@@ -7,8 +7,8 @@
 #include <fstream>
 #include <set>
 
-#include "app/exit_codes.h"
-#include "app/frame_sequence.h"
+#include "app/cli/exit_codes.h"
+#include "app/frame/frame_sequence.h"
 #include "tests/exr_read.h"
 #include "tests/test_support.h"
 

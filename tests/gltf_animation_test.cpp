@@ -14,7 +14,7 @@
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfIntAttribute.h>
 
-#include "renderer/image_input.h"
+#include "imageio/image_input.h"
 #include "scene_io/gltf_animation.h"
 #include "scene_io/gltf_loader.h"
 #include "scene_io/load_error.h"

@@ -12,7 +12,7 @@
 #include <fmt/format.h>
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "renderer/render_scene.h"
+#include "renderer/scene/render_scene.h"
 #include "scene_io/gltf_loader.h"
 #include "scene_io/load_error.h"
 #include "tests/test_support.h"

@@ -17,7 +17,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "renderer/image_input.h"
+#include "imageio/image_input.h"
 #include "scene_io/gltf_loader.h"
 #include "scene_io/load_error.h"
 #include "tests/test_support.h"

@@ -10,7 +10,7 @@
 #include <filesystem>
 #include <string>
 
-#include "renderer/image_input.h"
+#include "imageio/image_input.h"
 #include "tests/exr_read.h"
 #include "tests/same_bits.h"
 #include "tests/test_support.h"

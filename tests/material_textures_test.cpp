@@ -9,7 +9,7 @@
 #include <memory>
 #include <random>
 
-#include "renderer/integrator/materials.h"
+#include "renderer/materials/materials.h"
 
 namespace tessera {
 namespace {

@@ -1,5 +1,5 @@
 // Motion steps read at a time: segments as Embree reads them, transforms in parts
-// (renderer/motion.*), the moving camera, and SceneGeometry's surface at a hit's time lying
+// (renderer/geometry/motion.*), the moving camera, and SceneGeometry's surface at a hit's time lying
 // on the surface Embree intersected then.
 #include <gtest/gtest.h>
 
@@ -9,9 +9,9 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "renderer/camera.h"
-#include "renderer/motion.h"
-#include "renderer/render_scene.h"
+#include "renderer/camera/camera.h"
+#include "renderer/geometry/motion.h"
+#include "renderer/scene/render_scene.h"
 #include "tests/scene_builders.h"
 
 namespace tessera {

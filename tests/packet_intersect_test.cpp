@@ -10,8 +10,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "renderer/packet_check.h"
-#include "renderer/render_scene.h"
+#include "renderer/geometry/packet_check.h"
+#include "renderer/scene/render_scene.h"
 #include "tests/scene_builders.h"
 
 namespace tessera {
@@ -113,7 +113,7 @@ TEST(PacketIntersect, EveryHitIsTheSingleRaysWhateverSharesThePacket) {
 }
 
 // Packets are traced only on a CPU where Embree's packet kernels agree with its single-ray
-// kernel (renderer/packet_check.h): whenever packets forced on for this richer scene (a
+// kernel (renderer/geometry/packet_check.h): whenever packets forced on for this richer scene (a
 // blended surface, instances, a moving one) give some ray another hit, the check must have
 // said no, and RenderScene follows the check.
 TEST(PacketIntersect, PacketsAreUsedOnlyWhereTheCheckFoundThemAgreeing) {

@@ -10,6 +10,7 @@
 #include "renderer/integrator/path_tracer.h"
 #include "scene_io/gltf_loader.h"
 #include "tests/test_support.h"
+#include "imageio/environment_image.h"
 
 namespace tessera {
 namespace {
@@ -66,6 +67,7 @@ TEST(PathsInStep, EachPathIsTheSameAsTracedAlone) {
   expect_paths_alike("material-extensions/diffuse-transmission.gltf", white);
   EnvironmentParams sunrise;
   sunrise.image_path = test::scene_path("env/spruit_sunrise_1k.hdr");
+  sunrise.image = read_environment_image(sunrise.image_path);
   expect_paths_alike("khronos/DamagedHelmet/glTF-Binary/DamagedHelmet.glb", sunrise);
 }
 

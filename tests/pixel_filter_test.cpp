@@ -6,8 +6,8 @@
 #include <cmath>
 #include <random>
 
-#include "renderer/pixel_filter.h"
-#include "renderer/render.h"
+#include "renderer/camera/pixel_filter.h"
+#include "renderer/render/render.h"
 #include "tests/chi_square.h"
 #include "tests/scene_builders.h"
 

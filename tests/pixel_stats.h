@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstddef>
 
-#include "renderer/render.h"
+#include "renderer/render/render.h"
 
 namespace tessera::test {
 

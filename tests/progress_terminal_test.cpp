@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "app/progress.h"
-#include "app/terminal.h"
+#include "app/terminal/progress.h"
+#include "app/terminal/terminal.h"
 #include "tests/test_support.h"
 
 namespace tessera {

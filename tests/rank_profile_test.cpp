@@ -2,7 +2,7 @@
 // them, through a RankGroup whose gather hands rank 1's bytes to rank 0.
 #include <gtest/gtest.h>
 
-#include "renderer/rank_profile.h"
+#include "renderer/profile/rank_profile.h"
 
 namespace tessera {
 namespace {

@@ -2,7 +2,7 @@
 // through with probability 1 - alpha, for camera rays and shadow rays alike.
 #include <gtest/gtest.h>
 
-#include "renderer/render.h"
+#include "renderer/render/render.h"
 #include "tests/scene_builders.h"
 
 namespace tessera {

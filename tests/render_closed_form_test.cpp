@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "renderer/render.h"
+#include "renderer/render/render.h"
 #include "tests/pixel_stats.h"
 #include "tests/scene_builders.h"
 

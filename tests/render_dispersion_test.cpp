@@ -7,8 +7,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "renderer/integrator/spectrum.h"
-#include "renderer/render.h"
+#include "renderer/bsdfs/spectrum.h"
+#include "renderer/render/render.h"
 #include "tests/scene_builders.h"
 
 namespace tessera {

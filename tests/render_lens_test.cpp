@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "renderer/render.h"
+#include "renderer/render/render.h"
 #include "tests/scene_builders.h"
 
 namespace tessera {

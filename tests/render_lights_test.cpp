@@ -8,7 +8,7 @@
 #include <cmath>
 #include <tuple>
 
-#include "renderer/render.h"
+#include "renderer/render/render.h"
 #include "tests/scene_builders.h"
 
 namespace tessera {

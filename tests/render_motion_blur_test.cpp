@@ -11,7 +11,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "renderer/render.h"
+#include "renderer/render/render.h"
 #include "tests/same_bits.h"
 #include "tests/scene_builders.h"
 

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <cstring>
 
-#include "renderer/render.h"
+#include "renderer/render/render.h"
 #include "tests/scene_builders.h"
 
 namespace tessera {

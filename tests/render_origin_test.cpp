@@ -1,4 +1,4 @@
-// The render frame (renderer/render_origin.h): a scene far from the origin for its size is
+// The render frame (renderer/geometry/render_origin.h): a scene far from the origin for its size is
 // rendered about its centre (an animation's frame about a corner of a grid), with every
 // placement, camera and light moved alike and the camera's projections still of world
 // coordinates; anything else stays where it is.
@@ -6,9 +6,9 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "renderer/render.h"
-#include "renderer/render_origin.h"
-#include "renderer/render_scene.h"
+#include "renderer/render/render.h"
+#include "renderer/geometry/render_origin.h"
+#include "renderer/scene/render_scene.h"
 #include "tests/scene_builders.h"
 
 namespace tessera {

@@ -11,7 +11,7 @@
 #include <cmath>
 #include <vector>
 
-#include "renderer/render.h"
+#include "renderer/render/render.h"
 #include "tests/scene_builders.h"
 
 namespace tessera {

@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "renderer/profile_json.h"
+#include "app/profile/profile_json.h"
 #include "tests/schedule_fixture.h"
 
 namespace tessera {

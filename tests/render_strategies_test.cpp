@@ -11,9 +11,10 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "renderer/render.h"
+#include "renderer/render/render.h"
 #include "tests/scene_builders.h"
 #include "tests/test_support.h"
+#include "imageio/environment_image.h"
 
 namespace tessera {
 namespace {
@@ -42,6 +43,7 @@ RenderScene& scene() {
     out->close();
     EnvironmentParams env;
     env.image_path = path;
+    env.image = read_environment_image(env.image_path);
     return new RenderScene(std::move(s), env);
   }();
   return *rs;

@@ -9,9 +9,9 @@
 #include <OpenEXR/ImfMultiPartInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
 
-#include "renderer/image_output.h"
-#include "renderer/render.h"
-#include "renderer/resume_layers.h"
+#include "imageio/image_output.h"
+#include "renderer/render/render.h"
+#include "imageio/resume_layers.h"
 #include "tests/scene_builders.h"
 #include "tests/same_bits.h"
 #include "tests/test_support.h"

@@ -9,7 +9,7 @@
 #include <cmath>
 #include <cstring>
 
-#include "renderer/render.h"
+#include "renderer/render/render.h"
 #include "tests/pixel_stats.h"
 #include "tests/scene_builders.h"
 

@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "renderer/exr_layers.h"
+#include "imageio/exr_layers.h"
 
 namespace tessera::test {
 

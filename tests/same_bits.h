@@ -4,7 +4,7 @@
 #include <cstring>
 #include <vector>
 
-#include "renderer/film.h"
+#include "renderer/film/film.h"
 
 namespace tessera::test {
 
@@ -16,7 +16,7 @@ bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
 // Every sum, count and flag of the two films.
 void expect_same_film(const FilmState& a, const FilmState& b);
 
-// Every layer of the two frames (renderer/exr_layers.h) and their per-pixel counts.
+// Every layer of the two frames (imageio/exr_layers.h) and their per-pixel counts.
 void expect_same_image(const FrameImage& a, const FrameImage& b);
 
 }  // namespace tessera::test

@@ -9,7 +9,7 @@
 #include <cstring>
 #include <vector>
 
-#include "renderer/sampler.h"
+#include "renderer/sampling/sampler.h"
 
 namespace tessera {
 namespace {

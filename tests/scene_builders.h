@@ -1,7 +1,7 @@
 // Analytic test scenes built directly as SceneDescription, with no file in between.
 #pragma once
 
-#include "renderer/scene/scene.h"
+#include "renderer/description/scene.h"
 
 namespace tessera::test {
 

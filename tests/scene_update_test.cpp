@@ -5,7 +5,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "renderer/render.h"
+#include "renderer/render/render.h"
 #include "tests/same_bits.h"
 #include "tests/scene_builders.h"
 
@@ -84,7 +84,7 @@ SceneDescription room_at(float t, const vec3& at) {
 }
 
 // 10,000 units out the room (2 across) is rendered about the corner of its 16-unit grid
-// nearest its centre (renderer/render_origin.h): an update that leaves that corner the
+// nearest its centre (renderer/geometry/render_origin.h): an update that leaves that corner the
 // nearest renders as a fresh build of the frame; one that moves the room nearer another
 // corner is refused (a fresh build, with that corner as its origin, follows).
 TEST(SceneUpdate, AFarAnimationKeepsItsRenderOriginUntilItNearsAnotherCorner) {

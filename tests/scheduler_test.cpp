@@ -8,7 +8,7 @@
 #include <cstring>
 #include <numeric>
 
-#include "renderer/schedulers.h"
+#include "renderer/parallel/schedulers.h"
 #include "tests/same_bits.h"
 #include "tests/schedule_fixture.h"
 

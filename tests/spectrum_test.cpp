@@ -4,9 +4,9 @@
 // the Abbe number implies.
 #include <gtest/gtest.h>
 
-#include "renderer/integrator/bsdf.h"
-#include "renderer/integrator/spectrum.h"
-#include "renderer/sampler.h"
+#include "renderer/bsdfs/bsdf.h"
+#include "renderer/bsdfs/spectrum.h"
+#include "renderer/sampling/sampler.h"
 #include "tests/chi_square.h"
 
 namespace tessera {

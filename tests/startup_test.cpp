@@ -1,4 +1,4 @@
-// OpenImageIO is loaded only when an image needs it (renderer/image_codec.h): the program
+// OpenImageIO is loaded only when an image needs it (imageio/image_codec.h): the program
 // that writes an EXR never maps its libraries, one that writes a PNG does and writes it right.
 // Checked through the dynamic linker's own record of the files it opens (LD_DEBUG=files).
 #include <gtest/gtest.h>

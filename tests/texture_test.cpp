@@ -11,7 +11,7 @@
 #include <memory>
 #include <random>
 
-#include "renderer/texture.h"
+#include "renderer/materials/texture.h"
 
 namespace tessera {
 namespace {

@@ -6,9 +6,9 @@
 #include <complex>
 #include <string>
 
-#include "renderer/integrator/bsdf.h"
-#include "renderer/integrator/spectrum.h"
-#include "renderer/integrator/thin_film.h"
+#include "renderer/bsdfs/bsdf.h"
+#include "renderer/bsdfs/spectrum.h"
+#include "renderer/bsdfs/thin_film.h"
 
 namespace tessera {
 namespace {

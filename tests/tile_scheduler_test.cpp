@@ -3,7 +3,7 @@
 #include <atomic>
 #include <vector>
 
-#include "renderer/tile_scheduler.h"
+#include "renderer/parallel/tile_scheduler.h"
 
 namespace tessera {
 namespace {

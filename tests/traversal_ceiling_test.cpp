@@ -7,8 +7,8 @@
 // pixels.
 #include <gtest/gtest.h>
 
-#include "renderer/render_scene.h"
-#include "renderer/traversal_ceiling.h"
+#include "renderer/scene/render_scene.h"
+#include "renderer/profile/traversal_ceiling.h"
 #include "tests/scene_builders.h"
 
 namespace tessera {

@@ -31,15 +31,15 @@ add_library(tessera::oiio ALIAS PkgConfig::OIIO)
 pkg_check_modules(CAIRO REQUIRED IMPORTED_TARGET cairo>=1.16 cairo-svg)
 add_library(tessera::cairo ALIAS PkgConfig::CAIRO)
 
-# MPI (openmpi-bin, libopenmpi-dev): distributed rendering across ranks (renderer/mpi_ranks.cpp).
-# Optional: without it tessera builds and runs as one process (renderer/mpi_ranks_absent.cpp).
+# MPI (openmpi-bin, libopenmpi-dev): distributed rendering across ranks (renderer/parallel/mpi_ranks.cpp).
+# Optional: without it tessera builds and runs as one process (renderer/parallel/mpi_ranks_absent.cpp).
 # The C API from C++ (the project has no C language enabled); the deprecated C++ bindings skipped.
 set(MPI_CXX_SKIP_MPICXX ON)
 find_package(MPI COMPONENTS CXX)
 option(TESSERA_MPI "Distributed rendering with MPI (mpirun -np N tessera render ...)" ${MPI_CXX_FOUND})
 
 # OpenColorIO (libopencolorio-dev): the preview's view transform, built in or from a
-# studio's config (renderer/display_transform.cpp). Its pkg-config file, like OpenEXR's.
+# studio's config (imageio/display_transform.cpp). Its pkg-config file, like OpenEXR's.
 pkg_check_modules(OCIO REQUIRED IMPORTED_TARGET OpenColorIO>=2.1)
 add_library(tessera::ocio ALIAS PkgConfig::OCIO)
 

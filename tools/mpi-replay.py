@@ -6,7 +6,7 @@ Reads `tessera render --stats-json` (one process or several ranks): the CPU time
 in every sample wave, which does not depend on what else the measuring machine was doing.
 Each wave is replayed on N ranks of T threads each:
 
-  dynamic  tessera's counter (renderer/render.cpp): a rank asks rank 0 for a batch of tiles
+  dynamic  tessera's counter (renderer/render/render.cpp): a rank asks rank 0 for a batch of tiles
            (half its share of what is left, and at least T; what is left as the rank can tell:
            the counter past its last batch, and past as many again for each other rank), the
            answer comes one network latency later (plus a service time at rank

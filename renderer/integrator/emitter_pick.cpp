@@ -1,8 +1,8 @@
 #include "renderer/integrator/emitter_pick.h"
 
-#include "renderer/integrator/bsdf.h"
+#include "renderer/bsdfs/bsdf.h"
 #include "renderer/integrator/path_tracer.h"
-#include "renderer/sampler.h"
+#include "renderer/sampling/sampler.h"
 
 namespace tessera {
 namespace {

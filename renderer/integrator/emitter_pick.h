@@ -10,8 +10,8 @@
 // at every vertex cost 7% of its render for no measurable difference in noise.
 #pragma once
 
-#include "renderer/camera.h"
-#include "renderer/render_scene.h"
+#include "renderer/camera/camera.h"
+#include "renderer/scene/render_scene.h"
 
 namespace tessera {
 

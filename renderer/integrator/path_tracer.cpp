@@ -1,8 +1,8 @@
 #include "renderer/integrator/path_tracer.h"
 
-#include "renderer/integrator/bsdf.h"
-#include "renderer/integrator/punctual_lights.h"
-#include "renderer/integrator/spectrum.h"
+#include "renderer/bsdfs/bsdf.h"
+#include "renderer/lights/punctual_lights.h"
+#include "renderer/bsdfs/spectrum.h"
 
 namespace tessera {
 namespace {

@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "renderer/ray.h"
-#include "renderer/render_scene.h"
-#include "renderer/sampler.h"
+#include "renderer/util/ray.h"
+#include "renderer/scene/render_scene.h"
+#include "renderer/sampling/sampler.h"
 
 namespace tessera {
 

@@ -1,7 +1,0 @@
-#include "renderer/isa.h"
-
-namespace tessera {
-
-std::string_view compiled_isa() { return TESSERA_ISA; }
-
-}  // namespace tessera
