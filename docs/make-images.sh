@@ -16,6 +16,11 @@ mkdir -p docs/images
 trap 'rm -f helmet.exr cornell-box.exr' EXIT
 start=$SECONDS
 
+# --- The architecture picture (docs/architecture.md), when Graphviz is installed ---------------
+if command -v dot >/dev/null 2>&1; then
+  run dot -Tpng -Gdpi=90 docs/images/architecture.dot -o docs/images/architecture.png
+fi
+
 # --- The default scene -----------------------------------------------------------------------
 run tessera render scenes/cornell-box/cornell-box.gltf --width 640 --spp 512 -o docs/images/cornell-box.png
 # README.md's image: exactly the command README.md gives first, its preview moved here.

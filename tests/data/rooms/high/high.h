@@ -1,0 +1,3 @@
+// A header of the upper room: it may include the lower one.
+#pragma once
+#include "low/low.h"
