@@ -17,7 +17,7 @@
 #include "imageio/image_output.h"
 #include "renderer/parallel/mpi_ranks.h"
 #include "imageio/resume_layers.h"
-#include "scene_io/load_error.h"
+#include "scene_io/base/load_error.h"
 
 int main(int argc, char** argv) {
   using namespace tessera;

@@ -17,16 +17,16 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "renderer/util/math.h"
-#include "scene_io/gltf_accessor.h"
-#include "scene_io/gltf_hierarchy.h"
-#include "scene_io/gltf_images.h"
-#include "scene_io/gltf_instancing.h"
-#include "scene_io/gltf_material.h"
-#include "scene_io/gltf_mesh.h"
+#include "scene_io/base/gltf_accessor.h"
+#include "scene_io/nodes/gltf_hierarchy.h"
+#include "scene_io/decode/gltf_images.h"
+#include "scene_io/nodes/gltf_instancing.h"
+#include "scene_io/materials/gltf_material.h"
+#include "scene_io/nodes/gltf_mesh.h"
 #include "scene_io/gltf_parse.h"
-#include "scene_io/gltf_usage.h"
-#include "scene_io/gltf_variants.h"
-#include "scene_io/load_error.h"
+#include "scene_io/nodes/gltf_usage.h"
+#include "scene_io/materials/gltf_variants.h"
+#include "scene_io/base/load_error.h"
 
 namespace tessera {
 

@@ -8,11 +8,11 @@
 #include <vector>
 
 #include "renderer/description/scene.h"
-#include "scene_io/gltf_animation.h"
-#include "scene_io/gltf_defects.h"
-#include "scene_io/gltf_extensions.h"
-#include "scene_io/gltf_image_store.h"
-#include "scene_io/gltf_skin.h"
+#include "scene_io/nodes/gltf_animation.h"
+#include "scene_io/base/gltf_defects.h"
+#include "scene_io/base/gltf_extensions.h"
+#include "scene_io/decode/gltf_image_store.h"
+#include "scene_io/nodes/gltf_skin.h"
 
 namespace tessera {
 

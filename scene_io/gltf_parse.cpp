@@ -6,14 +6,14 @@
 
 #include <fmt/format.h>
 
-#include "scene_io/gltf_container.h"
-#include "scene_io/gltf_diagnose.h"
-#include "scene_io/gltf_draco.h"
-#include "scene_io/gltf_images.h"
-#include "scene_io/gltf_meshopt.h"
-#include "scene_io/gltf_prepare.h"
-#include "scene_io/gltf_variants.h"
-#include "scene_io/load_error.h"
+#include "scene_io/decode/gltf_container.h"
+#include "scene_io/validation/gltf_diagnose.h"
+#include "scene_io/decode/gltf_draco.h"
+#include "scene_io/decode/gltf_images.h"
+#include "scene_io/decode/gltf_meshopt.h"
+#include "scene_io/decode/gltf_prepare.h"
+#include "scene_io/materials/gltf_variants.h"
+#include "scene_io/base/load_error.h"
 
 namespace tessera {
 namespace {
@@ -105,7 +105,7 @@ tinygltf::Model parse_gltf(const std::vector<std::uint8_t>& bytes, const std::st
   parser.SetFsCallbacks({&file_exists, &expand_file_path, &read_whole_file, &write_whole_file, &ctx});
   parser.SetImageLoader(&load_gltf_image, &ctx);
   // tinygltf's own reading of extension objects drops empty arrays and objects and cuts
-  // integers to int, so KHR_materials_variants (scene_io/gltf_variants.cpp) reads the JSON
+  // integers to int, so KHR_materials_variants (scene_io/materials/gltf_variants.cpp) reads the JSON
   // text of each `extensions` object instead, which tinygltf keeps only when asked to.
   if (container.json.find(kMaterialsVariants) != std::string_view::npos)
     parser.SetStoreOriginalJSONForExtrasAndExtensions(true);

@@ -8,8 +8,8 @@
 
 #include <tiny_gltf.h>
 
-#include "scene_io/gltf_defects.h"
-#include "scene_io/gltf_image_store.h"
+#include "scene_io/base/gltf_defects.h"
+#include "scene_io/decode/gltf_image_store.h"
 
 namespace tessera {
 

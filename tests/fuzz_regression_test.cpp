@@ -9,7 +9,7 @@
 #include <iterator>
 
 #include "scene_io/gltf_loader.h"
-#include "scene_io/load_error.h"
+#include "scene_io/base/load_error.h"
 #include "tests/test_support.h"
 
 namespace tessera {

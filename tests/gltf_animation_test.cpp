@@ -1,4 +1,4 @@
-// glTF animations (scene_io/gltf_animation.*): the specification's interpolation formulas
+// glTF animations (scene_io/nodes/gltf_animation.*): the specification's interpolation formulas
 // computed by hand on small channels, and the loader posing InterpolationTest's nodes.
 #include <gtest/gtest.h>
 
@@ -15,9 +15,9 @@
 #include <OpenEXR/ImfIntAttribute.h>
 
 #include "imageio/image_input.h"
-#include "scene_io/gltf_animation.h"
+#include "scene_io/nodes/gltf_animation.h"
 #include "scene_io/gltf_loader.h"
-#include "scene_io/load_error.h"
+#include "scene_io/base/load_error.h"
 #include "tests/test_support.h"
 
 namespace tessera {

@@ -14,8 +14,8 @@
 #include <draco/compression/decode.h>
 
 #include "scene_io/gltf_loader.h"
-#include "scene_io/gltf_mesh.h"
-#include "scene_io/load_error.h"
+#include "scene_io/nodes/gltf_mesh.h"
+#include "scene_io/base/load_error.h"
 #include "tests/exr_read.h"
 #include "tests/test_support.h"
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "scene_io/gltf_loader.h"
-#include "scene_io/load_error.h"
+#include "scene_io/base/load_error.h"
 #include "tests/test_support.h"
 
 namespace tessera {
@@ -199,7 +199,7 @@ TEST(GltfConformance, ImagesWhoseBytesContradictTheirMediaTypeAreWarningsWhenUnu
   EXPECT_EQ(r.scene.images.at(shown).width, 1);  // the 1x1 red PNG, decoded
 }
 
-// Rules the validator checks and tinygltf does not (scene_io/gltf_rules.*), broken in objects
+// Rules the validator checks and tinygltf does not (scene_io/validation/gltf_rules.*), broken in objects
 // the scene does not use, and in the file as a whole. tools/gltf-validate.js: 32 errors, one per
 // warning below (NON_REQUIRED_EXTENSION, ASSET_MIN_VERSION_GREATER_THAN_VERSION, EMPTY_ENTITY
 // twice, ACCESSOR_NORMALIZED_INVALID, ANIMATION_DUPLICATE_TARGETS, MESH_PRIMITIVE_ACCESSOR_UNALIGNED,

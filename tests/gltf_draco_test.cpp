@@ -15,8 +15,8 @@
 #include <fmt/format.h>
 
 #include "scene_io/gltf_loader.h"
-#include "scene_io/gltf_mesh.h"
-#include "scene_io/load_error.h"
+#include "scene_io/nodes/gltf_mesh.h"
+#include "scene_io/base/load_error.h"
 #include "tests/test_support.h"
 
 namespace tessera {

@@ -1,4 +1,4 @@
-// Images are decoded when a converted scene shows them, once (scene_io/gltf_image_store.h):
+// Images are decoded when a converted scene shows them, once (scene_io/decode/gltf_image_store.h):
 // an image no used material reads is never decoded, so its defects cannot refuse the file,
 // and every scene converted from one document shares the same decoded pixels.
 #include <gtest/gtest.h>
@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "scene_io/gltf_loader.h"
-#include "scene_io/load_error.h"
+#include "scene_io/base/load_error.h"
 #include "tests/test_support.h"
 
 namespace tessera {

@@ -1,4 +1,4 @@
-// JPEG images decoded by libjpeg-turbo (scene_io/gltf_jpeg.cpp) against a second decoder,
+// JPEG images decoded by libjpeg-turbo (scene_io/decode/gltf_jpeg.cpp) against a second decoder,
 // the stb_image inside tinygltf (tinygltf::LoadImageData), which decoded them before.
 // The test images are made here with TurboJPEG's encoder.
 //
@@ -22,9 +22,9 @@
 
 #include <tiny_gltf.h>
 
-#include "scene_io/gltf_jpeg.h"
+#include "scene_io/decode/gltf_jpeg.h"
 #include "scene_io/gltf_loader.h"
-#include "scene_io/load_error.h"
+#include "scene_io/base/load_error.h"
 #include "tests/test_support.h"
 
 namespace tessera {

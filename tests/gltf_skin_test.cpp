@@ -1,4 +1,4 @@
-// glTF skins (scene_io/gltf_skin.*, the loader): vertices where the joint-matrix blend puts
+// glTF skins (scene_io/nodes/gltf_skin.*, the loader): vertices where the joint-matrix blend puts
 // them, computed by hand from SimpleSkin's data, and the rules around it.
 #include <gtest/gtest.h>
 
@@ -6,7 +6,7 @@
 #include <cstring>
 
 #include "scene_io/gltf_loader.h"
-#include "scene_io/load_error.h"
+#include "scene_io/base/load_error.h"
 #include "tests/test_support.h"
 
 namespace tessera {

@@ -47,21 +47,25 @@ add_library(tessera::ocio ALIAS PkgConfig::OCIO)
 # library with stb_image and nlohmann-json built in. Target: TinyGLTF::TinyGLTF
 find_package(TinyGLTF REQUIRED)
 
-# Draco 1.5: decodes KHR_draco_mesh_compression primitives (libdraco-dev; scene_io/gltf_draco.cpp).
+# Draco 1.5: decodes KHR_draco_mesh_compression primitives (libdraco-dev; scene_io/decode/gltf_draco.cpp).
 # Target: draco::draco
 find_package(draco REQUIRED CONFIG)
+# libdraco.so exports a tinygltf of its own (its glTF reader's, of another version): a program
+# that links both must name libtinygltf.so first, or tinygltf's calls bind to Draco's copy and
+# its classes differ. Draco as tinygltf's dependency puts it after tinygltf on every link line.
+set_property(TARGET TinyGLTF::TinyGLTF APPEND PROPERTY INTERFACE_LINK_LIBRARIES draco::draco)
 
 # meshoptimizer 0.18: decodes EXT_meshopt_compression buffer views and their filters
-# (libmeshoptimizer-dev; scene_io/gltf_meshopt.cpp). Target: meshoptimizer::meshoptimizer
+# (libmeshoptimizer-dev; scene_io/decode/gltf_meshopt.cpp). Target: meshoptimizer::meshoptimizer
 find_package(meshoptimizer REQUIRED CONFIG)
 
-# libwebp 1.2: decodes EXT_texture_webp images (libwebp-dev; scene_io/gltf_images.cpp). It ships
+# libwebp 1.2: decodes EXT_texture_webp images (libwebp-dev; scene_io/decode/gltf_images.cpp). It ships
 # no CMake config, so pkg-config. Target: tessera::webp
 pkg_check_modules(WEBP REQUIRED IMPORTED_TARGET libwebp)
 add_library(tessera::webp ALIAS PkgConfig::WEBP)
 
 # libjpeg-turbo 2.1's TurboJPEG API: decodes glTF's JPEG images (libturbojpeg0-dev;
-# scene_io/gltf_jpeg.cpp), several times faster than tinygltf's stb_image. Target: tessera::turbojpeg
+# scene_io/decode/gltf_jpeg.cpp), several times faster than tinygltf's stb_image. Target: tessera::turbojpeg
 pkg_check_modules(TURBOJPEG REQUIRED IMPORTED_TARGET libturbojpeg>=2.1)
 add_library(tessera::turbojpeg ALIAS PkgConfig::TURBOJPEG)
 
