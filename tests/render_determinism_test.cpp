@@ -32,6 +32,12 @@ RenderScene& room() {
     point.position = {0.5f, 0.5f, 0.5f};
     point.intensity = 2.0f;
     d.lights.push_back(point);
+    for (int i = 0; i < 12; ++i) {  // a row of small lights along the ceiling: the light tree's
+      PunctualLight small;
+      small.position = {-0.9f + 0.15f * i, 0.9f, -0.5f + 0.08f * i};
+      small.intensity = 0.05f;
+      d.lights.push_back(small);
+    }
     EnvironmentParams env;
     env.background = vec3(2.0f);
     return new RenderScene(std::move(d), env);
@@ -39,7 +45,7 @@ RenderScene& room() {
   return *scene;
 }
 
-FrameImage render_with(int threads, int tile_size) {
+FrameImage render_with(int threads, int tile_size, LightTreeUse light_tree = LightTreeUse::Off) {
   RenderSettings s;
   s.width = 61;  // not a multiple of any tile size: partial tiles too
   s.height = 47;
@@ -49,6 +55,7 @@ FrameImage render_with(int threads, int tile_size) {
   s.tile_size = tile_size;
   s.seed = 1234;
   s.aovs = {true, true, true};
+  s.light_tree = light_tree;
   const RenderCamera cam = make_camera(test::look_at({0, 0, 3}, {0, 0, 0}, 45.0f), s.width, s.height, {0.0f, 0.05f, 3.0f});
   return render_frame(room(), cam, s).image;
 }
@@ -71,6 +78,15 @@ TEST(RenderDeterminism, OneThreadAndTwoThreadsGiveTheSameBits) {
 
 TEST(RenderDeterminism, TileSize8And64GiveTheSameBits) {
   test::expect_same_image(render_with(2, 8), render_with(2, 64));
+}
+
+// With one punctual light a vertex chosen from the light tree: its own draw of the sampler.
+TEST(RenderDeterminism, OneThreadAndTwoThreadsGiveTheSameBitsWithTheLightTree) {
+  test::expect_same_image(render_with(1, 32, LightTreeUse::On), render_with(2, 32, LightTreeUse::On));
+}
+
+TEST(RenderDeterminism, TileSize8And64GiveTheSameBitsWithTheLightTree) {
+  test::expect_same_image(render_with(2, 8, LightTreeUse::On), render_with(2, 64, LightTreeUse::On));
 }
 
 TEST(RenderDeterminism, ADifferentSeedGivesADifferentImage) {

@@ -111,6 +111,7 @@ const std::vector<StoredOption>& stored_options() {
       option("--envmap-rotate", Role::pixels, &O::envmap_rotate),
       option("--aov", Role::pixels, &O::aovs),
       option("--light-sampling", Role::pixels, &O::light_sampling),
+      option("--light-tree", Role::pixels, &O::light_tree),
       option("--clamp", Role::pixels, &O::clamp),
       option("--noise-threshold", Role::pixels, &O::noise_threshold),
       option("--min-spp", Role::pixels, &O::min_spp),

@@ -103,6 +103,12 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
       ->check(CLI::IsMember({"mis", "bsdf", "lights"}))
       ->capture_default_str()
       ->group("Sampling");
+  cmd->add_option("--light-tree", o.light_tree,
+                  "Point and spot lights: on samples one per path vertex from a light tree (by power, distance "
+                  "and orientation), off samples each; auto: the tree with more than 8 of them. Same mean")
+      ->check(CLI::IsMember(light_tree_use_names()))
+      ->capture_default_str()
+      ->group("Sampling");
   cmd->add_option("--clamp", o.clamp,
                   "Clamp each sample's luminance to this value to tame fireflies (biased: darkens highlights; "
                   "0 = off)")

@@ -86,6 +86,8 @@ std::string resume_settings(const RenderOptions& o, const RenderSettings& s, con
   if (describe(s.filter) != "box 1") text += fmt::format("pixel-filter={}\n", describe(s.filter));
   if (s.light_sampling != LightSampling::Mis)
     text += fmt::format("light-sampling={}\n", s.light_sampling == LightSampling::BsdfOnly ? "bsdf" : "lights");
+  if (s.light_tree != LightTreeUse::Auto)  // auto decides from the scene, whose bytes are checked
+    text += fmt::format("light-tree={}\n", light_tree_use_names()[static_cast<int>(s.light_tree)]);
   if (s.clamp > 0.0f) text += fmt::format("clamp={}\n", s.clamp);
   // Only with --variant (frames before it had the default materials): the index decides, the
   // name is for the message.
@@ -108,7 +110,7 @@ namespace {
 
 // A line is left out when its setting is what frames had before the line existed.
 const std::pair<const char*, const char*> kUnwrittenDefaults[] = {
-    {"pixel-filter", "box 1"}, {"light-sampling", "mis"}, {"clamp", "0"}, {"animation", "all"}, {"time", "0"},
+    {"pixel-filter", "box 1"}, {"light-sampling", "mis"}, {"light-tree", "auto"}, {"clamp", "0"}, {"animation", "all"}, {"time", "0"},
     {"shutter", "none"}, {"motion-steps", "1"}, {"crop", "none"}};
 
 std::string value_of(const std::vector<std::pair<std::string, std::string>>& lines, const std::string& key) {

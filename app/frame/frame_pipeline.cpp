@@ -118,6 +118,7 @@ void plan_sampling(const RenderOptions& o, RenderSettings& s) {
   s.light_sampling = o.light_sampling == "bsdf"     ? LightSampling::BsdfOnly
                      : o.light_sampling == "lights" ? LightSampling::LightsOnly
                                                     : LightSampling::Mis;
+  s.light_tree = parse_light_tree_use(o.light_tree);
   s.clamp = o.clamp;
   s.seed = static_cast<std::uint32_t>(o.seed);
   s.sampler = parse_sampler(o.sampler);

@@ -93,24 +93,37 @@ struct ShadingContext {
   }
 };
 
-// Direct light from every punctual light (delta lights: no MIS partner).
+// Direct light from punctual light i (a delta light: no MIS partner).
+vec3 punctual_light(const RenderScene& scene, const ShadingContext& c, std::size_t i, PathCounters& counters) {
+  const PunctualLight& light = scene.description.lights[i];
+  const MotionTransform& motion = scene.light_motion[i];
+  const LightPlacement at = motion.empty() ? LightPlacement{light.position, light.direction}
+                                           : light_placement(motion.at(c.time));
+  LightSample ls;
+  vec3 wi_local;
+  if (!sample_punctual_light(light, at, c.s.p, ls) || !c.usable(ls.wi, wi_local)) return vec3(0.0f);
+  const vec3 f = c.bsdf.eval(c.wo_local, wi_local);
+  if (f == vec3(0.0f)) return vec3(0.0f);
+  ++counters.rays;
+  const vec3 through = visibility(scene, c.origin_towards(ls.wi), ls.wi, ls.distance * (1.0f - 1e-4f), c.time);
+  return through * f * ls.irradiance * std::fabs(wi_local.z);
+}
+
+// Direct light from every punctual light.
 vec3 punctual_light_contribution(const RenderScene& scene, const ShadingContext& c, PathCounters& counters) {
   vec3 sum(0.0f);
-  const std::vector<PunctualLight>& lights = scene.description.lights;
-  for (std::size_t i = 0; i < lights.size(); ++i) {
-    const PunctualLight& light = lights[i];
-    const MotionTransform& motion = scene.light_motion[i];
-    const LightPlacement at = motion.empty() ? LightPlacement{light.position, light.direction}
-                                             : light_placement(motion.at(c.time));
-    LightSample ls;
-    vec3 wi_local;
-    if (!sample_punctual_light(light, at, c.s.p, ls) || !c.usable(ls.wi, wi_local)) continue;
-    const vec3 f = c.bsdf.eval(c.wo_local, wi_local);
-    if (f == vec3(0.0f)) continue;
-    ++counters.rays;
-    const vec3 through = visibility(scene, c.origin_towards(ls.wi), ls.wi, ls.distance * (1.0f - 1e-4f), c.time);
-    sum += through * f * ls.irradiance * std::fabs(wi_local.z);
-  }
+  for (std::size_t i = 0; i < scene.description.lights.size(); ++i) sum += punctual_light(scene, c, i, counters);
+  return sum;
+}
+
+// Direct light from the punctual lights through the light tree: every directional light, and
+// one point or spot light chosen by `u` in proportion to its bound at this point, divided by
+// the probability of that choice.
+vec3 punctual_lights_by_tree(const RenderScene& scene, const ShadingContext& c, float u, PathCounters& counters) {
+  vec3 sum(0.0f);
+  for (std::uint32_t i : scene.light_tree.directional()) sum += punctual_light(scene, c, i, counters);
+  const LightTree::Choice pick = scene.light_tree.sample(c.s.p, c.s.ns, u);
+  if (pick.pmf > 0.0f) sum += punctual_light(scene, c, pick.light, counters) / pick.pmf;
   return sum;
 }
 
@@ -330,7 +343,10 @@ bool path_vertex(const RenderScene& scene, const PathTracerParams& params, PathS
     radiance += added;
     direct += added;
   };
-  if (!scene.description.lights.empty()) add_direct(punctual_light_contribution(scene, ctx, counters));
+  if (params.light_tree)  // one punctual light from the tree: its own draw
+    add_direct(punctual_lights_by_tree(scene, ctx, rng.next(), counters));
+  else if (!scene.description.lights.empty())
+    add_direct(punctual_light_contribution(scene, ctx, counters));
   if (light_sampling) add_direct(area_light_contribution(scene, ctx, u_light, light, mode, counters));
   if (environment_sampling) add_direct(environment_contribution(scene, ctx, rng, mode, counters));
   if (vertex) vertex->direct = direct;

@@ -22,6 +22,9 @@ struct PathTracerParams {
   LightSampling light_sampling = LightSampling::Mis;
   // The probability that a vertex samples an emitter (integrator/emitter_pick.h), in (0, 1].
   float emitter_pick = 1.0f;
+  // Each vertex samples one point or spot light from the scene's LightTree (divided by the
+  // probability of choosing it) instead of every one; directional lights are sampled each.
+  bool light_tree = false;
   float clamp = 0.0f;  // > 0: clamp each sample's radiance to this luminance (biased; off by default)
   // A camera ray that hits nothing adds no background (it still lights what rays reach):
   // the film's alpha says where the background shows, for compositing over a plate.

@@ -49,6 +49,9 @@ struct RenderSettings {
   // in expectation.
   float emitter_pick = 0.0f;
   float clamp = 0.0f;  // > 0: clamp each sample's luminance (biased, off by default)
+  // Whether a path vertex samples one punctual light from the light tree or every one
+  // (renderer/lights/light_tree.h; Auto: the tree with more than kLightTreeAutoMin lights).
+  LightTreeUse light_tree = LightTreeUse::Auto;
   // Camera rays that provably miss everything are not traced (renderer/camera/camera_coverage.h);
   // false traces every one, the same image: what the tests compare with.
   bool cull_camera_rays = true;

@@ -76,6 +76,7 @@ bool RenderScene::update(SceneDescription& next) {
   description.cameras = std::move(next.cameras);
   description.lights = std::move(next.lights);
   light_motion = light_motions(description);
+  light_tree = LightTree(description.lights);
   description.bounds = next.bounds;
   description.shutter_open = next.shutter_open;
   description.shutter_close = next.shutter_close;
@@ -94,6 +95,7 @@ RenderScene::RenderScene(SceneDescription scene, const EnvironmentParams& env)
   geometry->use_packets(packets_match_single_rays(device.get(), geometry->moves()));
   area_lights = std::make_unique<AreaLights>(description, *geometry, materials);
   light_motion = light_motions(description);
+  light_tree = LightTree(description.lights);
 }
 
 RenderCamera RenderScene::camera(const Camera& cam, int width, int height, const CameraParams& params) const {

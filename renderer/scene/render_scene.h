@@ -9,6 +9,7 @@
 
 #include "renderer/camera/camera.h"
 #include "renderer/lights/environment.h"
+#include "renderer/lights/light_tree.h"
 #include "renderer/lights/area_lights.h"
 #include "renderer/materials/materials.h"
 #include "renderer/geometry/motion.h"
@@ -54,6 +55,7 @@ struct RenderScene {
   // Per punctual light (description.lights): its transform over the shutter when it moves,
   // decomposed once; empty when it stands still.
   std::vector<MotionTransform> light_motion;
+  LightTree light_tree;  // over the point and spot lights, for many-light sampling
   double bvh_build_seconds = 0.0;
 
   // Something moves or deforms while the shutter is open (the camera aside).

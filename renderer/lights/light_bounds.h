@@ -1,0 +1,116 @@
+// Bounds of a group of lights for many-light sampling (Conty Estevez and Kulla 2018, as pbrt-v4
+// writes them): where they are (a box), which way they shine (a cone of axes, and how far past
+// an axis light still leaves), and how strong they are. importance() bounds from above what the
+// group can deliver to a point, up to one constant for all groups: zero only where no light of
+// the group can reach it.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "renderer/util/math.h"
+
+namespace tessera {
+
+struct LightBounds {
+  vec3 lo{std::numeric_limits<float>::infinity()}, hi{-std::numeric_limits<float>::infinity()};
+  vec3 axis{0.0f, 0.0f, 1.0f};  // unit: the cone of the lights' axes is about it
+  float cos_spread = 1.0f;  // cos theta_o: how far the axes stray from `axis` (-1: any way)
+  float cos_emit = 0.0f;  // cos theta_e: how far from its axis a light still emits
+  float power = 0.0f;  // phi: the group's summed strength (luminance of intensity)
+
+  bool empty() const { return !(power > 0.0f); }
+
+  // A bound of the light the group sends to `p` on a surface of normal `n` (either side;
+  // n = 0: no surface, as in a medium).
+  float importance(const vec3& p, const vec3& n) const {
+    if (empty()) return 0.0f;
+    const vec3 centre = 0.5f * (lo + hi), diagonal = hi - lo;
+    // The distance, kept from below at half the box's diagonal: inside it a group is as near
+    // as it can be, and a point light a shading point sits on does not make the weight infinite.
+    const float d2 = std::max({glm::dot(p - centre, p - centre), 0.5f * glm::length(diagonal), 1e-12f});
+    // cos and sin of the angles of the bound: the axis to the point, the box as seen from it.
+    const vec3 wi = p - centre;
+    const float len = glm::length(wi);
+    const vec3 w = len > 0.0f ? wi / len : axis;
+    const float cos_w = glm::dot(axis, w), sin_w = safe_sqrt(1.0f - cos_w * cos_w);
+    const float cos_b = cos_subtended(p, centre, diagonal), sin_b = safe_sqrt(1.0f - cos_b * cos_b);
+    const float sin_o = safe_sqrt(1.0f - cos_spread * cos_spread);
+    // The smallest angle between a light's axis and the direction to the point: theta_w less
+    // the axes' spread, less the box's angle (each clamped at 0).
+    const float cos_x = cos_minus(sin_w, cos_w, sin_o, cos_spread), sin_x = sin_minus(sin_w, cos_w, sin_o, cos_spread);
+    const float cos_theta = cos_minus(sin_x, cos_x, sin_b, cos_b);
+    if (cos_theta <= cos_emit) return 0.0f;
+    float importance = power * cos_theta / d2;
+    if (n != vec3(0.0f)) {  // the incident cosine, at its largest over the box
+      const float cos_i = std::fabs(glm::dot(w, n)), sin_i = safe_sqrt(1.0f - cos_i * cos_i);
+      importance *= cos_minus(sin_i, cos_i, sin_b, cos_b);
+    }
+    return std::min(std::max(importance, 0.0f), std::numeric_limits<float>::max());
+  }
+
+  // The bounds of both groups together.
+  static LightBounds merge(const LightBounds& a, const LightBounds& b) {
+    if (a.empty()) return b;
+    if (b.empty()) return a;
+    LightBounds m;
+    m.lo = glm::min(a.lo, b.lo);
+    m.hi = glm::max(a.hi, b.hi);
+    m.power = a.power + b.power;
+    m.cos_emit = std::min(a.cos_emit, b.cos_emit);
+    merge_cones(a, b, m);
+    return m;
+  }
+
+ private:
+  static float safe_sqrt(float x) { return std::sqrt(std::max(x, 0.0f)); }
+  // cos(a - b) and sin(a - b), as 1 and 0 where b >= a (the difference clamped at 0).
+  static float cos_minus(float sin_a, float cos_a, float sin_b, float cos_b) {
+    return cos_a > cos_b ? 1.0f : cos_a * cos_b + sin_a * sin_b;
+  }
+  static float sin_minus(float sin_a, float cos_a, float sin_b, float cos_b) {
+    return cos_a > cos_b ? 0.0f : sin_a * cos_b - cos_a * sin_b;
+  }
+  // The cosine of the half-angle of the cone from p that holds the box's bounding sphere (-1
+  // from inside the sphere: every direction).
+  static float cos_subtended(const vec3& p, const vec3& centre, const vec3& diagonal) {
+    const float r2 = 0.25f * glm::dot(diagonal, diagonal), d2 = glm::dot(p - centre, p - centre);
+    if (d2 <= r2) return -1.0f;
+    return safe_sqrt(1.0f - r2 / d2);
+  }
+  // The smallest cone holding both cones of axes (pbrt-v4's DirectionCone::Union).
+  static void merge_cones(const LightBounds& a, const LightBounds& b, LightBounds& m) {
+    const float theta_a = std::acos(std::clamp(a.cos_spread, -1.0f, 1.0f));
+    const float theta_b = std::acos(std::clamp(b.cos_spread, -1.0f, 1.0f));
+    const float theta_d = std::acos(std::clamp(glm::dot(a.axis, b.axis), -1.0f, 1.0f));
+    if (std::min(theta_d + theta_b, kPi) <= theta_a) {  // b inside a
+      m.axis = a.axis, m.cos_spread = a.cos_spread;
+      return;
+    }
+    if (std::min(theta_d + theta_a, kPi) <= theta_b) {
+      m.axis = b.axis, m.cos_spread = b.cos_spread;
+      return;
+    }
+    const float theta_o = 0.5f * (theta_a + theta_d + theta_b);
+    if (theta_o >= kPi) {
+      m.axis = a.axis, m.cos_spread = -1.0f;
+      return;
+    }
+    // Rotate a's axis towards b's by theta_o - theta_a about their common normal.
+    const float theta_r = theta_o - theta_a;
+    const vec3 wr = glm::cross(a.axis, b.axis);
+    if (glm::dot(wr, wr) < 1e-12f) {
+      m.axis = a.axis, m.cos_spread = -1.0f;
+      return;
+    }
+    const vec3 k = glm::normalize(wr);
+    // Rodrigues' rotation of a.axis about k by theta_r.
+    const vec3 v = a.axis;
+    m.axis = glm::normalize(v * std::cos(theta_r) + glm::cross(k, v) * std::sin(theta_r) +
+                            k * glm::dot(k, v) * (1.0f - std::cos(theta_r)));
+    m.cos_spread = std::cos(std::min(theta_o + 1e-4f, kPi));  // widened past float rounding
+  }
+};
+
+}  // namespace tessera
