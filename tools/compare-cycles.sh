@@ -11,10 +11,16 @@
 #     ratio for the noise normalised by the image's squared mean value, which does not reward
 #     the darker image for being darker, and for the relative noise (each pixel's over its own
 #     squared value + 0.01, as relMSE weighs errors), which does not reward a renderer for
-#     showing a region darker (Cycles' rough metals lose light that tessera keeps).
+#     showing a region darker (Cycles' rough metals lose light that tessera keeps), and the same
+#     with the regulariser scaled by the image's mean (scale-free: Blender's importer converts
+#     punctual light units, so its image of a lamp-lit scene is darker by a constant factor).
 # Also writes, per scene, NAME-tessera-vs-cycles.png (seed 1: tessera left, Cycles right) into
 # OUT_DIR. Each run's times go to stderr.
-#   tools/compare-cycles.sh [--spp N] [--width W] [--height H] [--rounds R] [--out DIR] [--envmap FILE] SCENE... [-- TESSERA_OPTION...]
+#   tools/compare-cycles.sh [--spp N] [--width W] [--height H] [--rounds R] [--out DIR] [--envmap FILE]
+#                           [--unbiased] [--black-world] SCENE... [-- TESSERA_OPTION...]
+# --unbiased turns Cycles' clamps (indirect 10) and glossy filter off, so that both renderers
+# are unbiased (the fair comparison where fireflies matter: glass, small lights); --black-world
+# renders both under a black world instead of the white one (scenes lit by their own lights).
 # TESSERA_OPTIONs go to every tessera render (e.g. -- --sampler independent; the adaptive
 # branch's --noise-threshold 0.01 --min-spp 16). Needs: apt-get install blender
 # python3-numpy python3-openimageio openimageio-tools; a built tessera (TESSERA=path, default
@@ -26,7 +32,7 @@ set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 tessera="${TESSERA:-$root/build/tessera}"
 source "$root/tools/measure-lib.sh"
-usage="usage: $0 [--spp N] [--width W] [--height H] [--rounds R] [--out DIR] [--envmap FILE] SCENE... [-- TESSERA_OPTION...]"
+usage="usage: $0 [--spp N] [--width W] [--height H] [--rounds R] [--out DIR] [--envmap FILE] [--unbiased] [--black-world] SCENE... [-- TESSERA_OPTION...]"
 spp=64 width=640 height=360 rounds=3 out=/tmp/tessera-vs-cycles envmap=""
 while [[ $# -gt 0 && "$1" == --?* ]]; do
   case "$1" in
@@ -36,6 +42,8 @@ while [[ $# -gt 0 && "$1" == --?* ]]; do
     --rounds) rounds=$2; shift 2 ;;
     --out) out=$2; shift 2 ;;
     --envmap) envmap=$(realpath -e "$2"); shift 2 ;;
+    --unbiased) export CUNBIASED=1; shift ;;
+    --black-world) export CWORLD=0; shift ;;
     *) echo "unknown option $1; $usage" >&2; exit 2 ;;
   esac
 done
@@ -47,11 +55,12 @@ tessera_extra=("$@")
 mkdir -p "$out"
 
 world=(--background 1,1,1)
+[[ "${CWORLD:-1}" == 0 ]] && world=(--background 0)
 [[ -n "$envmap" ]] && world=(--envmap "$envmap")
 samples=$((width * height * spp))
 echo "load before: $(uptime)" >&2
-echo "| scene | tessera s | Cycles s | tessera M samples/s | Cycles M samples/s | noise tessera | noise Cycles | s x noise tessera | s x noise Cycles | time to equal noise, Cycles / tessera | same, normalised noise | same, relative noise |"
-echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+echo "| scene | tessera s | Cycles s | tessera M samples/s | Cycles M samples/s | noise tessera | noise Cycles | s x noise tessera | s x noise Cycles | time to equal noise, Cycles / tessera | same, normalised noise | same, relative noise | same, scale-free relative noise |"
+echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
 for scene in "${scenes[@]}"; do
   name=$(basename "${scene%.*}")
   t_times=() c_times=()
@@ -73,17 +82,23 @@ for scene in "${scenes[@]}"; do
   rc=$(metrics noise --normalized "$out/$name-cycles-s1.exr" "$out/$name-cycles-s2.exr")
   pt=$(metrics noise --relative "$out/$name-tessera-s1.exr" "$out/$name-tessera-s2.exr")
   pc=$(metrics noise --relative "$out/$name-cycles-s1.exr" "$out/$name-cycles-s2.exr")
+  ft=$(metrics noise --scale-free "$out/$name-tessera-s1.exr" "$out/$name-tessera-s2.exr")
+  fc=$(metrics noise --scale-free "$out/$name-cycles-s1.exr" "$out/$name-cycles-s2.exr")
   # Cycles' render_time is given to 0.01 s: a render that short cannot be timed (n/a).
-  awk -v n="$name" -v t="$t" -v c="$c" -v s="$samples" -v nt="$nt" -v nc="$nc" -v rt="$rt" -v rc="$rc" -v pt="$pt" -v pc="$pc" '
+  awk -v n="$name" -v t="$t" -v c="$c" -v s="$samples" -v nt="$nt" -v nc="$nc" -v rt="$rt" -v rc="$rc" -v pt="$pt" -v pc="$pc" -v ft="$ft" -v fc="$fc" '
     function per(x, y, f) { return x > 0 && y > 0 ? sprintf(f, x / y) : "n/a" }
     BEGIN {
-      printf "| %s | %.3f | %.2f | %s | %s | %.3e | %.3e | %.3e | %.3e | %s | %s | %s |\n", n, t, c,
+      printf "| %s | %.3f | %.2f | %s | %s | %.3e | %.3e | %.3e | %.3e | %s | %s | %s | %s |\n", n, t, c,
         per(s / 1e6, t, "%.3f"), per(s / 1e6, c, "%.3f"), nt, nc, t * nt, c * nc,
-        per(c * nc, t * nt, "%.2fx"), per(c * rc, t * rt, "%.2fx"), per(c * pc, t * pt, "%.2fx") }'
+        per(c * nc, t * nt, "%.2fx"), per(c * rc, t * rt, "%.2fx"), per(c * pc, t * pt, "%.2fx"),
+        per(c * fc, t * ft, "%.2fx") }'
   echo "$name: tessera ${t_times[*]} s; Cycles ${c_times[*]} s" >&2
   to_png "$out/$name-tessera-vs-cycles.png" "$out/$name-tessera-s1.exr" "$out/$name-cycles-s1.exr"
 done
 echo
-echo "$width x $height, $spp spp, 8 bounces, 2 threads, $([[ -n "$envmap" ]] && echo "world: $(basename "$envmap")" || echo "white world");" \
+world_name="white world"
+[[ "${CWORLD:-1}" == 0 ]] && world_name="black world"
+[[ -n "$envmap" ]] && world_name="world: $(basename "$envmap")"
+echo "$width x $height, $spp spp, 8 bounces, 2 threads, $world_name, Cycles $([[ "${CUNBIASED:-0}" == 1 ]] && echo unbiased || echo "with its default clamps and glossy filter");" \
   "seeds 1 and 2, each renderer run $rounds times per seed, alternating; medians.${tessera_extra[*]:+ tessera options: ${tessera_extra[*]}.}"
 echo "load after: $(uptime)" >&2

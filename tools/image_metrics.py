@@ -1,13 +1,16 @@
 #!/usr/bin/python3
 """Image metrics for tessera's measurement scripts (Debian's python3: numpy and OpenImageIO).
 
-  image_metrics.py noise A.exr B.exr [--channels C,..] [--ref-channels C,..] [--mask MASK.exr] [--normalized | --relative]
+  image_metrics.py noise A.exr B.exr [--channels C,..] [--ref-channels C,..] [--mask MASK.exr]
+                   [--normalized | --relative | --scale-free]
       noise variance: mean over pixels and channels of (a - b)^2 / 2, for two renders of the
       same image with different seeds (their difference has twice the variance of either);
       --normalized divides it by the square of the two images' mean value, so that an image
       that is darker overall does not count as less noisy for that alone; --relative divides
       each pixel's by its own squared value ((a + b)^2 / 4) plus 0.01, as relmse does, so that
       a region one renderer shows darker (light it loses) does not count as less noisy either
+      --scale-free weighs each pixel as --relative does, with the 0.01 times the image's squared
+      mean: the same for an image scaled by any factor (renderers that read light units differently)
   image_metrics.py relmse IMG.exr REF.exr [--channels C,..] [--ref-channels C,..] [--mask MASK.exr]
       relative MSE: mean of (img - ref)^2 / (ref^2 + 0.01) over pixels and channels
   image_metrics.py edge-mask REF.exr -o MASK.exr [--albedo-threshold T] [--normal-threshold T]
@@ -93,9 +96,12 @@ def pair(a_path, b_path, a_channels, b_channels):
     return a, b
 
 
-def noise(a, b, mask=None, normalized=False, relative=False):
+def noise(a, b, mask=None, normalized=False, relative=False, scale_free=False):
     if mask is not None:
         a, b = a[mask], b[mask]
+    if scale_free:  # each pixel's over its squared value + 0.01 x the image's squared mean
+        m = (a + b) / 2
+        return float(((a - b) ** 2 / 2 / (m ** 2 + EPS * float(m.mean()) ** 2)).mean())
     if relative:  # (a - b)^2 / 2 = 2 (a - mean)^2, weighed as relMSE weighs an error against its reference
         return float((2 * rel_sq_error(a, (a + b) / 2)).mean())
     v = float(((a - b) ** 2 / 2).mean())
@@ -220,6 +226,7 @@ def selftest():
     assert noise(*pair(a, b, rgb, rgb)) == 0.25 ** 2 / 2
     assert noise(*pair(a, b, rgb, rgb), normalized=True) == 0.25 ** 2 / 2 / 0.375 ** 2
     assert abs(noise(*pair(a, b, rgb, rgb), relative=True) - 0.25 ** 2 / 2 / (0.375 ** 2 + 0.01)) < 1e-15
+    assert abs(noise(*pair(a, b, rgb, rgb), scale_free=True) - 0.25 ** 2 / 2 / (1.01 * 0.375 ** 2)) < 1e-15
     # relMSE: ref 0.5, image 0.25: 0.0625 / 0.26 in every pixel; of ref against itself, 0
     assert abs(relmse(*pair(a, b, rgb, rgb)) - 0.0625 / 0.26) < 1e-15
     assert relmse(*pair(b, b, rgb, rgb)) == 0.0
@@ -290,6 +297,8 @@ def main(argv):
     scale = sub.choices["noise"].add_mutually_exclusive_group()
     scale.add_argument("--normalized", action="store_true", help="over the squared mean value")
     scale.add_argument("--relative", action="store_true", help="each pixel's over its squared value + 0.01")
+    scale.add_argument("--scale-free", action="store_true",
+                       help="each pixel's over its squared value + 0.01 x the image's squared mean: the same for an image scaled")
     s = sub.add_parser("edge-mask")
     s.add_argument("ref")
     s.add_argument("-o", "--output", required=True)
@@ -319,7 +328,8 @@ def main(argv):
             write(args.output, error_map(img, ref, lo, hi), ["R", "G", "B"])
             return 0
         mask = read_mask(args.mask, img.shape[:2]) if args.mask else None
-        value = noise(img, ref, mask, args.normalized, args.relative) if args.cmd == "noise" else relmse(img, ref, mask)
+        value = (noise(img, ref, mask, args.normalized, args.relative, args.scale_free) if args.cmd == "noise"
+                 else relmse(img, ref, mask))
         print(f"{value:.6e}")
         return 0
     except Bad as err:

@@ -33,7 +33,7 @@ tessera_render() {
 cycles_render() {
   local exr=$1 scene=$2
   shift 2
-  if ! env -i HOME="$HOME" PATH=/usr/bin:/bin blender -b --factory-startup -t 2 \
+  if ! env -i HOME="$HOME" PATH=/usr/bin:/bin CUNBIASED="${CUNBIASED:-0}" CWORLD="${CWORLD:-1}" blender -b --factory-startup -t 2 \
       --python "$root/tools/peers/cycles_render.py" -- "$(realpath "$scene")" "$exr" "$@" >"$out/cycles.log" 2>&1 ||
      [[ ! -s "$exr" ]]; then
     echo "Cycles failed on $scene; its log:" >&2
