@@ -81,24 +81,72 @@ void make_guide(Half& h, const Planes& log_variance, const std::vector<float>& a
   for (float& v : h.guide_variance.data) v /= 9.0f;
 }
 
-// Fireflies (denoiser/outliers.h): both halves are detected first, on the colours as given,
-// then each outlier is scaled down to its reference luminance and stops being data.
+// The colour outliers lose (`excess`, at the pixels flagged in `outlier`), given back to the valid pixels of a half within
+// kOutlierSpreadRadius in proportion to their luminance: pixel j receives l_j times the sum,
+// over the outliers i whose box holds j, of excess_i / (the luminance summed over i's box). The
+// boxes are symmetric, so that is a box sum over j's own box, and every outlier's excess is
+// given back whole (unless its box holds no light at all). In proportion to what is there, the
+// energy raises the light of the surfaces around it rather than adding a flat glow, which on
+// dark pixels beside a glint would be a halo.
+void spread_excess(Half& h, const Planes& excess, const std::vector<std::uint8_t>& outlier) {
+  const int w = h.color.width, ht = h.color.height, r = kOutlierSpreadRadius;
+  const std::size_t n = h.valid.size();
+  auto area = [&](std::size_t i) {  // pixels of i's box, clipped to the image
+    const int x = static_cast<int>(i % w), y = static_cast<int>(i / w);
+    return float((std::min(w - 1, x + r) - std::max(0, x - r) + 1) * (std::min(ht - 1, y + r) - std::max(0, y - r) + 1));
+  };
+  Planes weight(w, ht, 1);  // a valid pixel's luminance: its share
+  for (std::size_t i = 0; i < n; ++i)
+    weight.at(0, i) = h.valid[i] * (std::max(h.color.at(0, i), 0.0f) + std::max(h.color.at(1, i), 0.0f) + std::max(h.color.at(2, i), 0.0f)) / 3.0f;
+  const Planes weight_mean = box_mean(weight, r);
+  Planes shares(w, ht, 3);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!outlier[i]) continue;
+    const float total = weight_mean.at(0, i) * area(i);
+    if (!(total > 0.0f)) continue;  // no light near: nowhere to give it
+    for (int c = 0; c < 3; ++c) shares.at(c, i) = excess.at(c, i) / total;
+  }
+  const Planes received = box_mean(shares, r);  // per pixel: the shares over its box's area
+  for (std::size_t j = 0; j < n; ++j) {
+    if (h.valid[j] == 0.0f) continue;
+    for (int c = 0; c < 3; ++c) h.color.at(c, j) += received.at(c, j) * area(j) * weight.at(0, j);
+  }
+}
+
+// Fireflies (denoiser/outliers.h): both halves are detected first, on the colours as given;
+// a pixel confirmed only by the other half's outlier is one too. Then each outlier is scaled
+// down to its reference luminance and stops being data, and what it loses is given back to
+// the valid pixels nearby, in both halves.
 void remove_outliers(Halves& halves) {
   std::vector<float> ref[2];
   for (int k = 0; k < 2; ++k)
     halves.h[k].outlier = detect_outliers(halves.h[k].color, halves.h[1 - k].color, halves.h[k].valid, ref[k]);
+  const std::size_t n = halves.h[0].valid.size();
+  for (std::size_t i = 0; i < n; ++i)
+    for (int k = 0; k < 2; ++k)
+      if (ref[k][i] > 0.0f && halves.h[1 - k].outlier[i]) halves.h[k].outlier[i] = 1;  // candidates both
+  // What the outliers of both halves lose, and where they are.
+  Planes lost(halves.h[0].color.width, halves.h[0].color.height, 3);
+  std::vector<std::uint8_t> any(n, 0);
   for (int k = 0; k < 2; ++k) {
     Half& h = halves.h[k];
-    h.excess.assign(h.valid.size(), 0.0f);
-    for (std::size_t i = 0; i < h.valid.size(); ++i) {
+    h.excess.assign(n, 0.0f);
+    for (std::size_t i = 0; i < n; ++i) {
       if (!h.outlier[i]) continue;
       const float l = (std::max(h.color.at(0, i), 0.0f) + std::max(h.color.at(1, i), 0.0f) + std::max(h.color.at(2, i), 0.0f)) / 3.0f;
       const float scale = ref[k][i] / l;  // l > ref >= 0
       h.excess[i] = l / ref[k][i];  // inf for a reference of 0
-      for (int c = 0; c < 3; ++c) h.color.at(c, i) *= scale;
+      for (int c = 0; c < 3; ++c) {
+        lost.at(c, i) += 0.5f * h.color.at(c, i) * (1.0f - scale);
+        h.color.at(c, i) *= scale;
+      }
       h.valid[i] = 0.0f;
+      any[i] = 1;
     }
   }
+  // Half of it to each half: the beauty (their mean) gets all of it back, and the halves
+  // agree about it, so the regression takes it for light, not for noise.
+  for (Half& h : halves.h) spread_excess(h, lost, any);
 }
 
 }  // namespace
