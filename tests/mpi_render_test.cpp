@@ -62,6 +62,27 @@ TEST_F(MpiRender, APartialFrameResumesAcrossRanksToTheSameBits) {
   expect_same_pixels(dir + "/whole.exr", dir + "/b.exr");
 }
 
+// A vertex's light from the light tree (1,024 lamps): its own draw of the sampler, so any
+// number of ranks, and a frame resumed, gives the single process's bits.
+TEST_F(MpiRender, TheLightTreeGivesTheSingleProcessBitsOnAnyRanksAndAfterResume) {
+  const std::string dir = test::make_temp_dir("mpi-light-tree");
+  const std::string street = quote(test::tessera_exe()) + " render " +
+                             quote(test::scene_path("many-lights/street-of-lamps.gltf")) +
+                             " -q --width 48 --height 27 --spp 256 --tile-size 8 --light-tree on -o ";
+  ASSERT_EQ(test::run_command(street + quote(dir + "/one.exr")).exit_code, 0);
+  for (int ranks : {2, 3}) {
+    const std::string out = dir + "/mpi" + std::to_string(ranks) + ".exr";
+    const auto r = test::run_command(mpirun(ranks) + street + quote(out));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    expect_same_pixels(dir + "/one.exr", out);
+  }
+  ASSERT_EQ(test::run_command(street + quote(dir + "/a.exr") + " --time-limit 0.01").exit_code, 0);
+  ASSERT_EQ(test::exr_int(dir + "/a.exr", "partial"), 1) << "not left partial: nothing to test";
+  const auto r = test::run_command(mpirun(2) + street + quote(dir + "/a.exr") + " --resume " + quote(dir + "/a.exr"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  expect_same_pixels(dir + "/one.exr", dir + "/a.exr");
+}
+
 // A sequence with at least as many frames as ranks: whole frames go to the ranks, each taken
 // from the shared counter; with fewer, the ranks share every frame's tiles. Either way every
 // frame file is the one process's, bit for bit.
