@@ -77,6 +77,10 @@ void print_summary(const RenderOptions& o, const FramePlan& to, const RenderSett
     print_status(fmt::format("tessera: emitters light-sampled at {:.0f}% of path vertices (their share of the direct "
                              "light the camera sees: docs/materials-and-lights.md#emitter-sampling)",
                              100.0 * s.emitter_pick));
+  if (s.light_tree_lights > 0)
+    print_status(fmt::format("tessera: one of {} point and spot lights sampled per path vertex by the light tree "
+                             "(docs/materials-and-lights.md#many-lights)",
+                             s.light_tree_lights));
   if (!result.profile.ranks.empty()) print_rank_summary(result.profile);
   if (settings.adaptive.on()) print_adaptive_summary(settings, result);
   std::string why;

@@ -47,6 +47,7 @@ class CameraSampler {
   bool background_only(int fx, int fy) const { return uniform_background_ && !coverage_.may_hit(fx, fy); }
   // The probability that a path vertex samples an emitter (integrator/emitter_pick.h).
   float emitter_pick() const { return params_.emitter_pick; }
+  bool samples_light_tree() const { return params_.light_tree; }  // one punctual light per vertex
   // n such samples: their radiance, each the same; counted as dropped when it is not finite.
   const vec3& background_samples(int n, PathCounters& counters) const;
   template <typename Each>

@@ -269,6 +269,7 @@ RenderResult render_frame(const RenderScene& scene, const RenderCamera& camera,
   stats.time_limited = out_of_time && film.samples_left(settings.spp) > 0;
   stats.converged_pixels = film.converged_pixels();
   stats.emitter_pick = sampler.emitter_pick();
+  stats.light_tree_lights = sampler.samples_light_tree() ? scene.light_tree.size() : 0;
   RenderResult result;
   result.stats = stats;
   result.profile = recorder.finish();

@@ -90,6 +90,7 @@ struct RenderStats {
   std::uint64_t resumed_samples = 0;  // camera samples the film held before this run
   std::uint64_t converged_pixels = 0;  // adaptive sampling: pixels stopped before spp
   float emitter_pick = 1.0f;  // the probability a vertex sampled an emitter (RenderSettings)
+  std::size_t light_tree_lights = 0;  // the point and spot lights a vertex chose one of; 0: no tree
   double efficiency = 1.0, imbalance = 1.0;  // see LoadBalance
 };
 
