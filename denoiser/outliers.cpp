@@ -9,12 +9,10 @@ namespace tessera::denoiser {
 
 namespace {
 
-// Cycles' luminance for outliers: the channel mean of the colour clamped to non-negative.
 std::vector<float> luminance(const Planes& c) {
   const std::size_t n = c.pixels();
   std::vector<float> out(n);
-  for (std::size_t i = 0; i < n; ++i)
-    out[i] = (std::max(c.at(0, i), 0.0f) + std::max(c.at(1, i), 0.0f) + std::max(c.at(2, i), 0.0f)) / 3.0f;
+  for (std::size_t i = 0; i < n; ++i) out[i] = outlier_luminance(c, i);
   return out;
 }
 

@@ -44,6 +44,8 @@
 // reference took its frame's 5.7x up).
 #pragma once
 
+#include <algorithm>
+
 #include "denoiser/planes.h"
 
 namespace tessera::denoiser {
@@ -54,6 +56,11 @@ constexpr float kOutlierFactor = 2.0f;  // the reference is twice the percentile
 constexpr float kHighlightRatio = 1.5f;  // the other half confirms when > the reference and > 1/1.5 of it
 constexpr float kImplausibleExcess = 25.0f;  // see above: the unfiltered candidate takes the other half
 constexpr int kOutlierSpreadRadius = 11;  // an outlier's lost colour goes to the 23x23 box about it
+
+// Cycles' luminance for outliers: the channel mean of pixel i's colour clamped to non-negative.
+inline float outlier_luminance(const Planes& c, std::size_t i) {
+  return (std::max(c.at(0, i), 0.0f) + std::max(c.at(1, i), 0.0f) + std::max(c.at(2, i), 0.0f)) / 3.0f;
+}
 
 // Per pixel: 1 where `self` (3 channels) is an outlier given the other half `other`; `ref`
 // receives the reference luminance (luminance: the mean over channels of max(0, c)) of every

@@ -97,7 +97,7 @@ void spread_excess(Half& h, const Planes& excess, const std::vector<std::uint8_t
   };
   Planes weight(w, ht, 1);  // a valid pixel's luminance: its share
   for (std::size_t i = 0; i < n; ++i)
-    weight.at(0, i) = h.valid[i] * (std::max(h.color.at(0, i), 0.0f) + std::max(h.color.at(1, i), 0.0f) + std::max(h.color.at(2, i), 0.0f)) / 3.0f;
+    weight.at(0, i) = h.valid[i] * outlier_luminance(h.color, i);
   const Planes weight_mean = box_mean(weight, r);
   Planes shares(w, ht, 3);
   for (std::size_t i = 0; i < n; ++i) {
@@ -133,7 +133,7 @@ void remove_outliers(Halves& halves) {
     h.excess.assign(n, 0.0f);
     for (std::size_t i = 0; i < n; ++i) {
       if (!h.outlier[i]) continue;
-      const float l = (std::max(h.color.at(0, i), 0.0f) + std::max(h.color.at(1, i), 0.0f) + std::max(h.color.at(2, i), 0.0f)) / 3.0f;
+      const float l = outlier_luminance(h.color, i);
       const float scale = ref[k][i] / l;  // l > ref >= 0
       h.excess[i] = l / ref[k][i];  // inf for a reference of 0
       for (int c = 0; c < 3; ++c) {
