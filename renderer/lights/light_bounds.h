@@ -26,16 +26,16 @@ struct LightBounds {
   // n = 0: no surface, as in a medium).
   float importance(const vec3& p, const vec3& n) const {
     if (empty()) return 0.0f;
-    const vec3 centre = 0.5f * (lo + hi), diagonal = hi - lo;
+    const vec3 centre = 0.5f * (lo + hi), diagonal = hi - lo, wi = p - centre;
+    const float dist2 = glm::dot(wi, wi);
     // The distance, kept from below at half the box's diagonal: inside it a group is as near
     // as it can be, and a point light a shading point sits on does not make the weight infinite.
-    const float d2 = std::max({glm::dot(p - centre, p - centre), 0.5f * glm::length(diagonal), 1e-12f});
+    const float d2 = std::max({dist2, 0.5f * glm::length(diagonal), 1e-12f});
     // cos and sin of the angles of the bound: the axis to the point, the box as seen from it.
-    const vec3 wi = p - centre;
-    const float len = glm::length(wi);
+    const float len = std::sqrt(dist2);
     const vec3 w = len > 0.0f ? wi / len : axis;
     const float cos_w = glm::dot(axis, w), sin_w = safe_sqrt(1.0f - cos_w * cos_w);
-    const float cos_b = cos_subtended(p, centre, diagonal), sin_b = safe_sqrt(1.0f - cos_b * cos_b);
+    const float cos_b = cos_subtended(dist2, diagonal), sin_b = safe_sqrt(1.0f - cos_b * cos_b);
     const float sin_o = safe_sqrt(1.0f - cos_spread * cos_spread);
     // The smallest angle between a light's axis and the direction to the point: theta_w less
     // the axes' spread, less the box's angle (each clamped at 0).
@@ -72,10 +72,10 @@ struct LightBounds {
   static float sin_minus(float sin_a, float cos_a, float sin_b, float cos_b) {
     return cos_a > cos_b ? 0.0f : sin_a * cos_b - cos_a * sin_b;
   }
-  // The cosine of the half-angle of the cone from p that holds the box's bounding sphere (-1
-  // from inside the sphere: every direction).
-  static float cos_subtended(const vec3& p, const vec3& centre, const vec3& diagonal) {
-    const float r2 = 0.25f * glm::dot(diagonal, diagonal), d2 = glm::dot(p - centre, p - centre);
+  // The cosine of the half-angle of the cone from a point d2 (squared) from the box's centre
+  // that holds the box's bounding sphere (-1 from inside the sphere: every direction).
+  static float cos_subtended(float d2, const vec3& diagonal) {
+    const float r2 = 0.25f * glm::dot(diagonal, diagonal);
     if (d2 <= r2) return -1.0f;
     return safe_sqrt(1.0f - r2 / d2);
   }
