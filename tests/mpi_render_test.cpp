@@ -83,6 +83,28 @@ TEST_F(MpiRender, TheLightTreeGivesTheSingleProcessBitsOnAnyRanksAndAfterResume)
   expect_same_pixels(dir + "/one.exr", dir + "/a.exr");
 }
 
+// Path guiding across ranks: each rank records what its tiles' paths found, the ranks add
+// their records (integers) after each learning wave, and every rank finishes the same round:
+// 1, 2 and 3 ranks and a resumed render give the one process's image bit for bit.
+TEST_F(MpiRender, GuidingGivesTheSingleProcessBitsOnAnyRanksAndAfterResume) {
+  const std::string dir = test::make_temp_dir("mpi-guiding");
+  const std::string caustic = quote(test::tessera_exe()) + " render " +
+                              quote(test::scene_path("hard-light/caustic.gltf")) +
+                              " -q --width 48 --height 27 --spp 64 --tile-size 8 --background 0 --guiding on -o ";
+  ASSERT_EQ(test::run_command(caustic + quote(dir + "/one.exr")).exit_code, 0);
+  for (int ranks : {2, 3}) {
+    const std::string out = dir + "/mpi" + std::to_string(ranks) + ".exr";
+    const auto r = test::run_command(mpirun(ranks) + caustic + quote(out));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    expect_same_pixels(dir + "/one.exr", out);
+  }
+  ASSERT_EQ(test::run_command(caustic + quote(dir + "/a.exr") + " --time-limit 0.01").exit_code, 0);
+  ASSERT_EQ(test::exr_int(dir + "/a.exr", "partial"), 1) << "not left partial: nothing to test";
+  const auto r = test::run_command(mpirun(2) + caustic + quote(dir + "/a.exr") + " --resume " + quote(dir + "/a.exr"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  expect_same_pixels(dir + "/one.exr", dir + "/a.exr");
+}
+
 // A sequence with at least as many frames as ranks: whole frames go to the ranks, each taken
 // from the shared counter; with fewer, the ranks share every frame's tiles. Either way every
 // frame file is the one process's, bit for bit.

@@ -50,6 +50,7 @@ struct RenderOptions {
   std::string resume;  // a partial EXR to continue
   std::string light_sampling = "mis";
   std::string light_tree = "auto";
+  std::string guiding = "auto";
   float clamp = 0.0f;
   float noise_threshold = 0.0f;  // adaptive sampling: 0 off
   int min_spp = 0;  // adaptive sampling: 0 automatic

@@ -112,6 +112,7 @@ const std::vector<StoredOption>& stored_options() {
       option("--aov", Role::pixels, &O::aovs),
       option("--light-sampling", Role::pixels, &O::light_sampling),
       option("--light-tree", Role::pixels, &O::light_tree),
+      option("--guiding", Role::pixels, &O::guiding),
       option("--clamp", Role::pixels, &O::clamp),
       option("--noise-threshold", Role::pixels, &O::noise_threshold),
       option("--min-spp", Role::pixels, &O::min_spp),

@@ -109,6 +109,13 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
       ->check(CLI::IsMember(light_tree_use_names()))
       ->capture_default_str()
       ->group("Sampling");
+  cmd->add_option("--guiding", o.guiding,
+                  "Path guiding: on learns where light comes from in the first sample waves (a quarter of the "
+                  "samples) and draws half of the diffuse directions from it; auto: off (no scene measured "
+                  "faster to equal noise with it yet). Same mean")
+      ->check(CLI::IsMember(guiding_use_names()))
+      ->capture_default_str()
+      ->group("Sampling");
   cmd->add_option("--clamp", o.clamp,
                   "Clamp each sample's luminance to this value to tame fireflies (biased: darkens highlights; "
                   "0 = off)")

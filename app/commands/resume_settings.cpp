@@ -88,6 +88,8 @@ std::string resume_settings(const RenderOptions& o, const RenderSettings& s, con
     text += fmt::format("light-sampling={}\n", s.light_sampling == LightSampling::BsdfOnly ? "bsdf" : "lights");
   if (s.light_tree != LightTreeUse::Auto)  // auto decides from the scene, whose bytes are checked
     text += fmt::format("light-tree={}\n", light_tree_use_names()[static_cast<int>(s.light_tree)]);
+  if (s.guiding != GuidingUse::Auto)
+    text += fmt::format("guiding={}\n", guiding_use_names()[static_cast<int>(s.guiding)]);
   if (s.clamp > 0.0f) text += fmt::format("clamp={}\n", s.clamp);
   // Only with --variant (frames before it had the default materials): the index decides, the
   // name is for the message.

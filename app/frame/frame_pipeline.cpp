@@ -119,6 +119,7 @@ void plan_sampling(const RenderOptions& o, RenderSettings& s) {
                      : o.light_sampling == "lights" ? LightSampling::LightsOnly
                                                     : LightSampling::Mis;
   s.light_tree = parse_light_tree_use(o.light_tree);
+  s.guiding = parse_guiding_use(o.guiding);
   s.clamp = o.clamp;
   s.seed = static_cast<std::uint32_t>(o.seed);
   s.sampler = parse_sampler(o.sampler);

@@ -289,6 +289,7 @@ float GltfBsdf::coat_pdf(const vec3& wo, const vec3& wi) const {
 const char* GltfBsdf::lobe_name(int lobe) {
   static const char* const kNames[] = {"diffuse", "diffuse transmission", "specular", "multiple scattering",
                                        "transmission", "sheen", "clearcoat"};
+  if (lobe == kGuided) return "guided";
   return lobe >= 0 && lobe < kLobeCount ? kNames[lobe] : "none";
 }
 

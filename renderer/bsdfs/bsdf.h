@@ -80,6 +80,7 @@ inline vec3 sample_cosine_hemisphere(const vec2& u) {
 class GltfBsdf {
  public:
   enum Lobe { kDiffuse, kDiffuseTransmission, kSpecular, kMultiScatter, kTransmission, kSheen, kClearcoat, kLobeCount };
+  static constexpr int kGuided = kLobeCount;  // a BsdfSample's lobe when the path guide drew it
 
   // `eta` = index of refraction beyond the surface / index on the side of wo. `frame` is the
   // shading frame (world to local) for the material's world directions: the anisotropy
@@ -105,7 +106,7 @@ class GltfBsdf {
   // the compensated interface that is not reflected, under the sheen and the coat.
   vec3 straight_transmittance() const { return straight_; }
   float lobe_probability(Lobe lobe) const { return weight_[lobe]; }
-  static const char* lobe_name(int lobe);  // "diffuse", "specular", ...
+  static const char* lobe_name(int lobe);  // "diffuse", "specular", ..., "guided"
 
  private:
   vec3 dielectric_fresnel(float cos_oh) const {  // s * F for the dielectric layer

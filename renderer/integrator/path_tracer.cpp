@@ -1,6 +1,7 @@
 #include "renderer/integrator/path_tracer.h"
 
 #include "renderer/bsdfs/bsdf.h"
+#include "renderer/integrator/guided_scattering.h"
 #include "renderer/lights/punctual_lights.h"
 #include "renderer/bsdfs/spectrum.h"
 
@@ -74,6 +75,7 @@ struct ShadingContext {
   const GltfBsdf& bsdf;
   vec3 wo_local;
   float time;  // the path's: lights and occluders are where they are then
+  GuideAt guide;  // directions are drawn from its mixture with the BSDF: its density weighs light samples
 
   // Ray origin for leaving towards wi: offset to the side of the surface wi goes to.
   vec3 origin_towards(const vec3& wi) const {
@@ -142,7 +144,7 @@ vec3 area_light_contribution(const RenderScene& scene, const ShadingContext& c, 
   ++counters.rays;
   const vec3 through = c.visibility_to(scene, ls.wi, ls.p, ls.normal);
   if (through == vec3(0.0f)) return vec3(0.0f);
-  const float weight = strategy_weight(mode, true, ls.pdf, bsdf_pdf);
+  const float weight = strategy_weight(mode, true, ls.pdf, c.guide.pdf(ls.wi, bsdf_pdf));
   return through * f * radiance * (std::fabs(wi_local.z) * weight / ls.pdf);
 }
 
@@ -160,7 +162,7 @@ vec3 environment_contribution(const RenderScene& scene, const ShadingContext& c,
   ++counters.rays;
   const vec3 through = visibility(scene, c.origin_towards(wi), wi, std::numeric_limits<float>::infinity(), c.time);
   if (through == vec3(0.0f)) return vec3(0.0f);
-  const float weight = strategy_weight(mode, true, pdf, bsdf_pdf);
+  const float weight = strategy_weight(mode, true, pdf, c.guide.pdf(wi, bsdf_pdf));
   return through * f * scene.environment.radiance(wi) * (std::fabs(wi_local.z) * weight / pdf);
 }
 
@@ -226,6 +228,7 @@ struct PathState {
   int bounce = 0;
   HitRecord hit;  // of `ray`, once traced
   bool prefetched = false;  // the hit's textures were prefetched with others' (a packet, a group)
+  GuidePath* learning = nullptr;  // what the path records for the guide, while it learns
 };
 
 // The path's vertex at st.hit (`found`: st.ray hit something): what it adds to st.radiance,
@@ -330,7 +333,7 @@ bool path_vertex(const RenderScene& scene, const PathTracerParams& params, PathS
   const vec3 wo_local = frame.to_local(-ray.direction);
   const float eta = front ? sp.ior : 1.0f / sp.ior;
   const GltfBsdf bsdf(sp, wo_local, eta, frame);
-  const ShadingContext ctx{s, frame, bsdf, wo_local, time};
+  const ShadingContext ctx{s, frame, bsdf, wo_local, time, guide_at(params.guide, s.p, sp, bsdf)};
   if (last) {  // no scattering left, but the straight pass is none: it goes on, weighted
     throughput *= bsdf.straight_transmittance();
     if (vertex) vertex->lobe = "straight pass";
@@ -353,7 +356,7 @@ bool path_vertex(const RenderScene& scene, const PathTracerParams& params, PathS
 
   BsdfSample bs;
   const vec3 u = rng.next3();  // the direction (x, y) and the lobe (z), stratified together
-  if (!bsdf.sample(wo_local, u.z, {u.x, u.y}, bs)) {
+  if (!sample_guided(bsdf, frame, wo_local, ctx.guide, u, bs)) {
     if (record) record->end = "no direction sampled";
     return false;
   }
@@ -384,6 +387,7 @@ bool path_vertex(const RenderScene& scene, const PathTracerParams& params, PathS
     throughput /= survive;
   }
   ray = Ray{ctx.origin_towards(wi), wi, 0.0f, std::numeric_limits<float>::infinity(), time};
+  if (st.learning && ctx.guide.share > 0.0f) st.learning->vertex(s.p, wi, bs.pdf, throughput, radiance);
   return true;
 }
 
@@ -393,12 +397,15 @@ vec3 trace_path_from(const RenderScene& scene, const PathTracerParams& params, R
                      Sampler& rng, FirstHit& first, PathCounters& counters, PathRecord* record) {
   PathState st;
   st.start(ray, known != nullptr);  // a camera packet's textures are prefetched together
+  GuidePath learning;
+  if (params.learn) st.learning = &learning;
   for (;;) {
     ++counters.rays;
     const bool found = known ? (st.hit = known->hit, known->found) : scene.geometry->intersect(st.ray, st.hit);
     known = nullptr;  // the first ray's only
     if (!path_vertex(scene, params, st, found, rng, first, counters, record)) break;
   }
+  if (params.learn) learning.finish(*params.guide, st.radiance);
   return finished_sample(st.radiance, params, counters);
 }
 
@@ -407,10 +414,12 @@ void trace_paths_from(const RenderScene& scene, const PathTracerParams& params, 
                       vec3* radiance) {
   constexpr int kMost = SceneGeometry::kPacketSize;
   PathState states[kMost];
+  GuidePath learning[kMost];
   bool found[kMost];
   int active[kMost], count = 0;
   for (int k = 0; k < n && k < kMost; ++k) {
     states[k].start(rays[k], true);  // the caller prefetched the first hits' textures
+    if (params.learn) states[k].learning = &learning[k];
     states[k].hit = known[k].hit;
     found[k] = known[k].found;
     ++counters.rays;
@@ -422,7 +431,10 @@ void trace_paths_from(const RenderScene& scene, const PathTracerParams& params, 
     for (int a = 0; a < count; ++a) {
       const int k = active[a];
       if (path_vertex(scene, params, states[k], found[k], *rngs[k], firsts[k], counters, nullptr)) active[still++] = k;
-      else radiance[k] = finished_sample(states[k].radiance, params, counters);
+      else {
+        if (params.learn) learning[k].finish(*params.guide, states[k].radiance);
+        radiance[k] = finished_sample(states[k].radiance, params, counters);
+      }
     }
     count = still;
     for (int a = 0; a < count; ++a) {

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "renderer/guiding/path_guide.h"
 #include "renderer/util/ray.h"
 #include "renderer/scene/render_scene.h"
 #include "renderer/sampling/sampler.h"
@@ -25,6 +26,12 @@ struct PathTracerParams {
   // Each vertex samples one point or spot light from the scene's LightTree (divided by the
   // probability of choosing it) instead of every one; directional lights are sampled each.
   bool light_tree = false;
+  // Path guiding (renderer/guiding/path_guide.h): directions drawn in part from what the guide
+  // learnt (integrator/guided_scattering.h); null: from the BSDF alone. `learn`: the paths
+  // also record what they find into it (the guide must not be sampled from meanwhile by
+  // anything that finishes its round).
+  PathGuide* guide = nullptr;
+  bool learn = false;
   float clamp = 0.0f;  // > 0: clamp each sample's radiance to this luminance (biased; off by default)
   // A camera ray that hits nothing adds no background (it still lights what rays reach):
   // the film's alpha says where the background shows, for compositing over a plate.

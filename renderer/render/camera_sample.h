@@ -48,6 +48,12 @@ class CameraSampler {
   // The probability that a path vertex samples an emitter (integrator/emitter_pick.h).
   float emitter_pick() const { return params_.emitter_pick; }
   bool samples_light_tree() const { return params_.light_tree; }  // one punctual light per vertex
+  // Paths guided by `guide` (null: not guided) from the next sample on, recording what they
+  // find into it when `learn`.
+  void use_guide(PathGuide* guide, bool learn) {
+    params_.guide = guide;
+    params_.learn = guide && learn;
+  }
   // n such samples: their radiance, each the same; counted as dropped when it is not finite.
   const vec3& background_samples(int n, PathCounters& counters) const;
   template <typename Each>

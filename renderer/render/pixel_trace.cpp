@@ -3,12 +3,15 @@
 #include <algorithm>
 
 #include "renderer/render/camera_sample.h"
+#include "renderer/render/frame_guide.h"
 
 namespace tessera {
 
 PixelTrace trace_pixel(const RenderScene& scene, const RenderCamera& camera, const RenderSettings& settings,
                        const PixelTraceParams& params) {
-  const CameraSampler sampler(scene, camera, settings);
+  CameraSampler sampler(scene, camera, settings);
+  FrameGuide guide(scene, camera, settings);  // learnt from the whole frame, as render_frame's
+  sampler.use_guide(guide.guide(), false);
   PixelTrace trace;
   const int recorded = std::clamp(params.recorded, 0, settings.spp);
   trace.paths.resize(recorded);
@@ -23,6 +26,7 @@ PixelTrace trace_pixel(const RenderScene& scene, const RenderCamera& camera, con
       sum += glm::dvec3(r.radiance);  // an invalid sample is black, as on the film
       if (s < recorded) trace.radiance[s] = r.radiance;
     }, records.data());
+    if (guide.learns_from(wave)) guide.learn_alone(wave), guide.finish_round(wave, nullptr);
   }
   trace.samples = settings.spp;
   trace.mean = sum / static_cast<double>(settings.spp);

@@ -8,6 +8,7 @@
 #include <tbb/info.h>
 
 #include "renderer/render/camera_sample.h"
+#include "renderer/render/frame_guide.h"
 #include "renderer/parallel/film_exchange.h"
 #include "renderer/integrator/path_tracer.h"
 #include "renderer/profile/rank_profile.h"
@@ -203,11 +204,19 @@ RenderResult render_frame(const RenderScene& scene, const RenderCamera& camera,
   auto all_stopped = [&] { return settings.ranks ? settings.ranks->any(stopped()) : stopped(); };
   // A distributed render: every rank's samples and dropped samples, summed after each wave.
   std::uint64_t cluster_samples = 0, cluster_dropped = film.state().dropped;
-  const CameraSampler sampler(scene, camera, settings);
+  CameraSampler sampler(scene, camera, settings);
+  FrameGuide guide(scene, camera, settings);
   WaveRunner runner(plan);
   for (std::size_t w = 0; w < waves.size(); ++w) {
-    if (wave_already_done(film, waves[w], min_spp)) continue;  // resumed past it
+    if (wave_already_done(film, waves[w], min_spp)) {  // resumed past it
+      if (guide.learns_from(waves[w])) guide.learn_alone(waves[w]), guide.finish_round(waves[w], nullptr);
+      continue;
+    }
     if (all_stopped()) break;
+    // The film's tiles learn when they are the whole frame's wave: not a crop's, nor a
+    // resumed one's (its pixels may hold part of the wave already).
+    const bool learns = guide.learns_from(waves[w]), learns_in_film = learns && !settings.window.cropped() && !resume;
+    sampler.use_guide(guide.guide(), learns_in_film);
     recorder.begin_wave(waves_run++, waves[w].begin, waves[w].end);
     const std::uint64_t samples_before = samples, dropped_before = dropped;
     const ItemBody body = [&](std::size_t i, int thread) {
@@ -236,6 +245,10 @@ RenderResult render_frame(const RenderScene& scene, const RenderCamera& camera,
       runner.run(body);
     }
     recorder.end_wave();
+    if (learns) {
+      if (!learns_in_film) guide.learn_alone(waves[w]);
+      guide.finish_round(waves[w], learns_in_film ? settings.ranks : nullptr);
+    }
     if (settings.alive_in) settings.alive_in->alive();
     first_wave = false;
     // Only after a whole wave (a stopped one skipped tiles), and not after the last.
@@ -270,6 +283,7 @@ RenderResult render_frame(const RenderScene& scene, const RenderCamera& camera,
   stats.converged_pixels = film.converged_pixels();
   stats.emitter_pick = sampler.emitter_pick();
   stats.light_tree_lights = sampler.samples_light_tree() ? scene.light_tree.size() : 0;
+  if (guide.guide()) stats.guide_rounds = guide.guide()->rounds(), stats.guide_regions = guide.guide()->regions();
   RenderResult result;
   result.stats = stats;
   result.profile = recorder.finish();

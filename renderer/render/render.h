@@ -10,6 +10,7 @@
 #include "renderer/sampling/adaptive_sampling.h"
 #include "renderer/camera/camera.h"
 #include "renderer/film/film.h"
+#include "renderer/guiding/guiding_use.h"
 #include "renderer/parallel/rank_group.h"
 #include "renderer/camera/pixel_filter.h"
 #include "renderer/integrator/path_tracer.h"
@@ -52,6 +53,10 @@ struct RenderSettings {
   // Whether a path vertex samples one punctual light from the light tree or every one
   // (renderer/lights/light_tree.h; Auto: the tree with more than kLightTreeAutoMin lights).
   LightTreeUse light_tree = LightTreeUse::Auto;
+  // Path guiding (renderer/guiding/path_guide.h, render/frame_guide.h): paths draw their
+  // directions in part from the incident light learnt in the first waves (Auto:
+  // renderer/guiding/guiding_use.h). The same image in expectation.
+  GuidingUse guiding = GuidingUse::Auto;
   // Camera rays that provably miss everything are not traced (renderer/camera/camera_coverage.h);
   // false traces every one, the same image: what the tests compare with.
   bool cull_camera_rays = true;
@@ -91,6 +96,8 @@ struct RenderStats {
   std::uint64_t converged_pixels = 0;  // adaptive sampling: pixels stopped before spp
   float emitter_pick = 1.0f;  // the probability a vertex sampled an emitter (RenderSettings)
   std::size_t light_tree_lights = 0;  // the point and spot lights a vertex chose one of; 0: no tree
+  int guide_rounds = 0;  // path guiding: the rounds the guide learnt in (0: not guided)
+  std::size_t guide_regions = 0;  // the regions of space it guides in
   double efficiency = 1.0, imbalance = 1.0;  // see LoadBalance
 };
 
