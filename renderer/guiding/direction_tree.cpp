@@ -44,11 +44,11 @@ void DirectionTree::set_energy(const std::vector<double>& leaf_energy) {
   }
 }
 
-vec2 DirectionTree::sample(vec2 u, float& pdf) const {
+vec2 DirectionTree::sample(vec2 u_in, float& pdf) const {
+  // In double: each level stretches u by 1 / (a child's share), and a float's 24 bits would
+  // be spent within a few levels, leaving a lattice of directions in a deep leaf.
+  double ux = u_in.x, uy = u_in.y, ox = 0.0, oy = 0.0, size = 1.0, density = 1.0;
   std::uint32_t node = 0;
-  vec2 origin(0.0f);
-  float size = 1.0f;
-  double density = 1.0;
   while (!is_leaf(node)) {
     const auto& c = children_[node];
     const double e[4] = {energy_[c[0]], energy_[c[1]], energy_[c[2]], energy_[c[3]]};
@@ -56,22 +56,22 @@ vec2 DirectionTree::sample(vec2 u, float& pdf) const {
     // The column (x) by its two children's share, then the row within it: u stays uniform.
     const double left = (e[0] + e[2]) / total;
     int cx = 0;
-    if (u.x < left) u.x = static_cast<float>(u.x / left);
-    else cx = 1, u.x = static_cast<float>((u.x - left) / (1.0 - left));
-    const double column = e[cx] + e[cx + 2];
-    const double low = e[cx] / column;
+    if (ux < left) ux /= left;
+    else cx = 1, ux = (ux - left) / (1.0 - left);
+    const double low = e[cx] / (e[cx] + e[cx + 2]);
     int cy = 0;
-    if (u.y < low) u.y = static_cast<float>(u.y / low);
-    else cy = 1, u.y = static_cast<float>((u.y - low) / (1.0 - low));
-    u = glm::min(u, vec2(std::nextafter(1.0f, 0.0f)));
+    if (uy < low) uy /= low;
+    else cy = 1, uy = (uy - low) / (1.0 - low);
+    ux = std::min(ux, 1.0), uy = std::min(uy, 1.0);
     const int q = cx + 2 * cy;
     density *= 4.0 * e[q] / total;
-    size *= 0.5f;
-    origin += size * vec2(static_cast<float>(cx), static_cast<float>(cy));
+    size *= 0.5;
+    ox += size * cx, oy += size * cy;
     node = c[q];
   }
   pdf = static_cast<float>(density);
-  return glm::min(origin + size * u, vec2(std::nextafter(1.0f, 0.0f)));
+  const float most = std::nextafter(1.0f, 0.0f);
+  return {std::min(static_cast<float>(ox + size * ux), most), std::min(static_cast<float>(oy + size * uy), most)};
 }
 
 float DirectionTree::pdf(vec2 p) const {
