@@ -62,47 +62,40 @@ TEST_F(MpiRender, APartialFrameResumesAcrossRanksToTheSameBits) {
   expect_same_pixels(dir + "/whole.exr", dir + "/b.exr");
 }
 
-// A vertex's light from the light tree (1,024 lamps): its own draw of the sampler, so any
-// number of ranks, and a frame resumed, gives the single process's bits.
-TEST_F(MpiRender, TheLightTreeGivesTheSingleProcessBitsOnAnyRanksAndAfterResume) {
-  const std::string dir = test::make_temp_dir("mpi-light-tree");
-  const std::string street = quote(test::tessera_exe()) + " render " +
-                             quote(test::scene_path("many-lights/street-of-lamps.gltf")) +
-                             " -q --width 48 --height 27 --spp 256 --tile-size 8 --light-tree on -o ";
-  ASSERT_EQ(test::run_command(street + quote(dir + "/one.exr")).exit_code, 0);
+// `render` (a command line ending in -o) on one process, on 2 and 3 ranks, and stopped early
+// then resumed on 2 ranks: every image the one process's, bit for bit.
+void expect_one_process_bits_on_ranks_and_after_resume(const std::string& dir, const std::string& render) {
+  ASSERT_EQ(test::run_command(render + quote(dir + "/one.exr")).exit_code, 0);
   for (int ranks : {2, 3}) {
     const std::string out = dir + "/mpi" + std::to_string(ranks) + ".exr";
-    const auto r = test::run_command(mpirun(ranks) + street + quote(out));
+    const auto r = test::run_command(mpirun(ranks) + render + quote(out));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     expect_same_pixels(dir + "/one.exr", out);
   }
-  ASSERT_EQ(test::run_command(street + quote(dir + "/a.exr") + " --time-limit 0.01").exit_code, 0);
+  ASSERT_EQ(test::run_command(render + quote(dir + "/a.exr") + " --time-limit 0.01").exit_code, 0);
   ASSERT_EQ(test::exr_int(dir + "/a.exr", "partial"), 1) << "not left partial: nothing to test";
-  const auto r = test::run_command(mpirun(2) + street + quote(dir + "/a.exr") + " --resume " + quote(dir + "/a.exr"));
+  const auto r = test::run_command(mpirun(2) + render + quote(dir + "/a.exr") + " --resume " + quote(dir + "/a.exr"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   expect_same_pixels(dir + "/one.exr", dir + "/a.exr");
+}
+
+// A vertex's light from the light tree (1,024 lamps): its own draw of the sampler, so any
+// number of ranks, and a frame resumed, gives the single process's bits.
+TEST_F(MpiRender, TheLightTreeGivesTheSingleProcessBitsOnAnyRanksAndAfterResume) {
+  expect_one_process_bits_on_ranks_and_after_resume(
+      test::make_temp_dir("mpi-light-tree"),
+      quote(test::tessera_exe()) + " render " + quote(test::scene_path("many-lights/street-of-lamps.gltf")) +
+          " -q --width 48 --height 27 --spp 256 --tile-size 8 --light-tree on -o ");
 }
 
 // Path guiding across ranks: each rank records what its tiles' paths found, the ranks add
 // their records (integers) after each learning wave, and every rank finishes the same round:
 // 1, 2 and 3 ranks and a resumed render give the one process's image bit for bit.
 TEST_F(MpiRender, GuidingGivesTheSingleProcessBitsOnAnyRanksAndAfterResume) {
-  const std::string dir = test::make_temp_dir("mpi-guiding");
-  const std::string caustic = quote(test::tessera_exe()) + " render " +
-                              quote(test::scene_path("hard-light/caustic.gltf")) +
-                              " -q --width 48 --height 27 --spp 64 --tile-size 8 --background 0 --guiding on -o ";
-  ASSERT_EQ(test::run_command(caustic + quote(dir + "/one.exr")).exit_code, 0);
-  for (int ranks : {2, 3}) {
-    const std::string out = dir + "/mpi" + std::to_string(ranks) + ".exr";
-    const auto r = test::run_command(mpirun(ranks) + caustic + quote(out));
-    ASSERT_EQ(r.exit_code, 0) << r.err;
-    expect_same_pixels(dir + "/one.exr", out);
-  }
-  ASSERT_EQ(test::run_command(caustic + quote(dir + "/a.exr") + " --time-limit 0.01").exit_code, 0);
-  ASSERT_EQ(test::exr_int(dir + "/a.exr", "partial"), 1) << "not left partial: nothing to test";
-  const auto r = test::run_command(mpirun(2) + caustic + quote(dir + "/a.exr") + " --resume " + quote(dir + "/a.exr"));
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  expect_same_pixels(dir + "/one.exr", dir + "/a.exr");
+  expect_one_process_bits_on_ranks_and_after_resume(
+      test::make_temp_dir("mpi-guiding"),
+      quote(test::tessera_exe()) + " render " + quote(test::scene_path("hard-light/caustic.gltf")) +
+          " -q --width 48 --height 27 --spp 64 --tile-size 8 --background 0 --guiding on -o ");
 }
 
 // A sequence with at least as many frames as ranks: whole frames go to the ranks, each taken
