@@ -81,6 +81,10 @@ void print_summary(const RenderOptions& o, const FramePlan& to, const RenderSett
     print_status(fmt::format("tessera: one of {} point and spot lights sampled per path vertex by the light tree "
                              "(docs/materials-and-lights.md#many-lights)",
                              s.light_tree_lights));
+  if (s.emitter_tree_triangles > 0)
+    print_status(fmt::format("tessera: emissive triangles chosen by the light tree, from {} of them, at each path "
+                             "vertex (docs/materials-and-lights.md#many-lights)",
+                             s.emitter_tree_triangles));
   if (!result.profile.ranks.empty()) print_rank_summary(result.profile);
   if (settings.adaptive.on()) print_adaptive_summary(settings, result);
   std::string why;

@@ -25,6 +25,9 @@ struct PathTracerParams {
   // Each vertex samples one point or spot light from the scene's LightTree (divided by the
   // probability of choosing it) instead of every one; directional lights are sampled each.
   bool light_tree = false;
+  // The emissive triangle a vertex samples is chosen by the area lights' light tree from the
+  // vertex's position and normal (AreaLights::tree), instead of by power alone.
+  bool emitter_tree = false;
   float clamp = 0.0f;  // > 0: clamp each sample's radiance to this luminance (biased; off by default)
   // A camera ray that hits nothing adds no background (it still lights what rays reach):
   // the film's alpha says where the background shows, for compositing over a plate.

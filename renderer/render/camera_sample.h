@@ -48,6 +48,7 @@ class CameraSampler {
   // The probability that a path vertex samples an emitter (integrator/emitter_pick.h).
   float emitter_pick() const { return params_.emitter_pick; }
   bool samples_light_tree() const { return params_.light_tree; }  // one punctual light per vertex
+  bool samples_emitter_tree() const { return params_.emitter_tree; }  // emissive triangles chosen by the tree
   // n such samples: their radiance, each the same; counted as dropped when it is not finite.
   const vec3& background_samples(int n, PathCounters& counters) const;
   template <typename Each>

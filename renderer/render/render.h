@@ -50,7 +50,9 @@ struct RenderSettings {
   float emitter_pick = 0.0f;
   float clamp = 0.0f;  // > 0: clamp each sample's luminance (biased, off by default)
   // Whether a path vertex samples one punctual light from the light tree or every one
-  // (renderer/lights/light_tree.h; Auto: the tree with more than kLightTreeAutoMin lights).
+  // (renderer/lights/light_tree.h; Auto: the tree with more than kLightTreeAutoMin lights), and
+  // whether the emissive triangle it samples is chosen by their light tree or by power
+  // (AreaLights::tree_used; Auto: AreaLights::auto_tree).
   LightTreeUse light_tree = LightTreeUse::Auto;
   // Camera rays that provably miss everything are not traced (renderer/camera/camera_coverage.h);
   // false traces every one, the same image: what the tests compare with.
@@ -91,6 +93,7 @@ struct RenderStats {
   std::uint64_t converged_pixels = 0;  // adaptive sampling: pixels stopped before spp
   float emitter_pick = 1.0f;  // the probability a vertex sampled an emitter (RenderSettings)
   std::size_t light_tree_lights = 0;  // the point and spot lights a vertex chose one of; 0: no tree
+  std::size_t emitter_tree_triangles = 0;  // the emissive triangles the tree chose among; 0: by power
   double efficiency = 1.0, imbalance = 1.0;  // see LoadBalance
 };
 
