@@ -1,7 +1,7 @@
 // The light tree over emissive triangles (AreaLights::tree, renderer/lights/light_tree.h): each
 // triangle's probability at a shading point is the product of the branch probabilities the
 // bounds' importance gives (checked against the same product worked out here from the
-// documented median split), the probabilities sum to 1, AreaLights::pdf is that probability
+// documented construction: median splits, four children a node), the probabilities sum to 1, AreaLights::pdf is that probability
 // times the point's density that sampling gives, sampling chooses each triangle as often as
 // its probability (chi-square), and a floor under a grid of small emitters renders the closed
 // form sum of their form factors (Lambert's polygon formula) with the tree and without.
@@ -32,39 +32,65 @@ LightBounds small_light(const vec3& c, const vec3& axis, float power, bool two_s
   return b;
 }
 
-// The probability of each light of [begin, end) (sorted along x, the longest axis) by the
-// tree's documented rule, worked out independently: halves at the median down to leaves of
-// up to `leaf` lights, each half chosen by its merged bounds' importance, in a leaf by power.
-void expected_pmfs(const std::vector<LightBounds>& sorted, std::size_t begin, std::size_t end, std::size_t leaf,
-                   const vec3& p, const vec3& n, double pmf, std::vector<double>& out) {
-  auto merged = [&](std::size_t a, std::size_t b) {
+// The probability of each light (sorted along x, the longest axis of their centres) by the
+// tree's documented rule, worked out independently: the binary tree halves at the median down
+// to leaves of up to `leaf` lights; a node of the walk has as children its binary node's
+// grandchildren (a leaf child stays itself), each chosen in proportion to its merged bounds'
+// importance; in a leaf of several, a light by its share of the leaf's power.
+struct ExpectedTree {
+  const std::vector<LightBounds>& sorted;
+  std::size_t leaf;
+  vec3 p, n;
+  std::vector<double> out;
+
+  LightBounds merged(std::size_t a, std::size_t b) const {
     LightBounds m = sorted[a];
     for (std::size_t i = a + 1; i < b; ++i) m = LightBounds::merge(m, sorted[i]);
     return m;
-  };
-  if (end - begin <= leaf) {
-    const double total = merged(begin, end).power;
-    for (std::size_t i = begin; i < end; ++i) out[i] = end - begin == 1 ? pmf : pmf * sorted[i].power / total;
-    return;
   }
-  // The tree merges the children's bounds bottom-up; merging left to right within each half
-  // gives the same boxes and powers, but the cones could differ by rounding: so the halves'
-  // importance is compared with a tolerance below, not bit for bit.
-  const std::size_t mid = begin + (end - begin) / 2;
-  const double a = merged(begin, mid).importance(p, n), b = merged(mid, end).importance(p, n);
-  if (!(a + b > 0.0)) {
-    for (std::size_t i = begin; i < end; ++i) out[i] = 0.0;
-    return;
+  bool is_leaf(std::size_t a, std::size_t b) const { return b - a <= leaf; }
+  void leaf_shares(std::size_t a, std::size_t b, double pmf) {
+    const double total = merged(a, b).power;
+    for (std::size_t i = a; i < b; ++i) out[i] = b - a == 1 ? pmf : pmf * sorted[i].power / total;
   }
-  expected_pmfs(sorted, begin, mid, leaf, p, n, pmf * a / (a + b), out);
-  expected_pmfs(sorted, mid, end, leaf, p, n, pmf * b / (a + b), out);
-}
+  // [a, b): a binary node that is not a leaf, reached with probability pmf.
+  void node(std::size_t a, std::size_t b, double pmf) {
+    std::vector<std::pair<std::size_t, std::size_t>> slots;
+    const std::size_t mid = a + (b - a) / 2;
+    for (auto [c0, c1] : {std::pair{a, mid}, std::pair{mid, b}}) {
+      if (is_leaf(c0, c1)) {
+        slots.emplace_back(c0, c1);
+      } else {
+        const std::size_t m = c0 + (c1 - c0) / 2;
+        slots.emplace_back(c0, m);
+        slots.emplace_back(m, c1);
+      }
+    }
+    // The tree merges bottom-up, here left to right: the same boxes and powers, the cones the
+    // same but for rounding, so the comparison below has a tolerance.
+    std::vector<double> imp;
+    double total = 0.0;
+    for (auto [c0, c1] : slots) total += imp.emplace_back(merged(c0, c1).importance(p, n));
+    for (std::size_t k = 0; k < slots.size(); ++k) {
+      const double q = total > 0.0 ? pmf * imp[k] / total : 0.0;
+      if (is_leaf(slots[k].first, slots[k].second)) leaf_shares(slots[k].first, slots[k].second, q);
+      else node(slots[k].first, slots[k].second, q);
+    }
+  }
+  std::vector<double> run() {
+    out.assign(sorted.size(), 0.0);
+    // A root that is a leaf: the walk's one level, one child, chosen where it can reach p.
+    if (is_leaf(0, sorted.size())) leaf_shares(0, sorted.size(), merged(0, sorted.size()).importance(p, n) > 0.0f ? 1.0 : 0.0);
+    else node(0, sorted.size(), 1.0);
+    return out;
+  }
+};
 
 TEST(EmitterTree, EveryProbabilityIsTheProductOfItsBranchesOnSmallTrees) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
   for (std::size_t leaf : {1u, 2u, 4u})
-    for (std::size_t count : {1u, 2u, 3u, 5u, 8u, 13u}) {
+    for (std::size_t count : {1u, 2u, 3u, 5u, 8u, 13u, 40u}) {
       // Along x, 1 m apart (the longest axis of their centres), facing down or sideways.
       std::vector<LightBounds> lights;
       for (std::size_t i = 0; i < count; ++i)
@@ -75,8 +101,7 @@ TEST(EmitterTree, EveryProbabilityIsTheProductOfItsBranchesOnSmallTrees) {
       ASSERT_EQ(tree.size(), count);
       for (const vec3& p : {vec3(0, 0, 0), vec3(3.5f, 0.5f, 1), vec3(-2, 4, 0), vec3(10, 2, -1)}) {
         const vec3 n(0, 1, 0);
-        std::vector<double> expected(count);
-        expected_pmfs(lights, 0, count, leaf, p, n, 1.0, expected);
+        const std::vector<double> expected = ExpectedTree{lights, leaf, p, n, {}}.run();
         double sum = 0.0;
         for (std::uint32_t i = 0; i < count; ++i) {
           const float pmf = tree.pmf(p, n, i);

@@ -51,28 +51,41 @@ class LightTree {
   float pmf(const vec3& p, const vec3& n, std::uint32_t light) const;
 
  private:
-  struct alignas(64) Node {  // one cache line
-    LightBounds::Prepared bounds;
-    std::uint32_t child = 0;  // interior: the second child (the first follows the node); leaf: its first member
-    std::uint32_t count = 0;  // lights in a leaf; 0: interior
+  // Up to four children (each a node, or a leaf of lights) with their bounds side by side: one
+  // SSE pass gives the four importances. The tree is built binary (median splits), then read
+  // two levels at a time: a node's children are its binary node's grandchildren (a leaf
+  // child stays itself), so the walk has half the levels.
+  struct alignas(64) Node {
+    LightBounds4 bounds;
+    std::uint32_t child[4] = {0, 0, 0, 0};  // a node's index; a leaf's first place in members_
+    std::uint32_t count[4] = {0, 0, 0, 0};  // a leaf's lights; 0: a node, or no child (no power)
   };
+  struct Binary {  // the tree as built
+    LightBounds bounds;
+    std::uint32_t first = 0, second = 0;  // children (interior)
+    std::uint32_t begin = 0, count = 0;  // a leaf's lights in members_ (count > 0)
+  };
+  std::uint32_t build(std::vector<std::pair<LightBounds, std::uint32_t>>& lights, std::size_t begin, std::size_t end,
+                      std::size_t leaf_size, std::vector<Binary>& binary);
   void build_over(std::vector<std::pair<LightBounds, std::uint32_t>>& lights, int leaf_size);
-  LightBounds build(std::vector<std::pair<LightBounds, std::uint32_t>>& lights, std::size_t begin, std::size_t end,
-                    std::uint64_t trail, int depth, std::size_t leaf_size);
-  // The probability of the first child of interior node `node` at p (NaN-free; -1: neither can
-  // reach p).
-  float first_child_probability(std::uint32_t node, const vec3& p, const vec3& n) const;
+  // Makes the node whose children are those of binary node `b` and below it; `trail`, `depth`:
+  // the way to it.
+  std::uint32_t collapse(const std::vector<Binary>& binary, std::uint32_t b, std::uint64_t trail, int depth);
+  // The children's importance at p (imp) and their sum; false: none can reach p. Where some
+  // are infinite, those share the choice evenly.
+  bool child_importance(const Node& node, const vec3& p, const vec3& n, float imp[4], float& total) const;
 
   std::vector<Node> nodes_;
   std::vector<std::uint32_t> directional_;
   std::vector<std::uint32_t> members_;  // the leaves' lights, each leaf's together
   std::vector<float> member_power_;  // their powers, in the same order
-  // Per scene light: its leaf's node and the way to it (bit d: the second child at depth d).
+  std::vector<float> leaf_power_;  // in the same order: the power of the member's whole leaf
+  // Per scene light: the way to its leaf (two bits per level: which of four children) and
+  // its place in members_.
   struct Leaf {
-    std::uint32_t node = 0;
     std::uint64_t trail = 0;
-    int depth = -1;  // -1: not in the tree
-    std::uint32_t member = 0;  // its place in members_
+    int depth = -1;  // levels; -1: not in the tree
+    std::uint32_t member = 0;
   };
   std::vector<Leaf> leaf_of_;
   std::size_t in_tree_ = 0;
