@@ -12,6 +12,7 @@
 #include <random>
 #include <vector>
 
+#include "renderer/integrator/emitter_pick.h"
 #include "renderer/lights/area_lights.h"
 #include "renderer/render/render.h"
 #include "tests/pixel_stats.h"
@@ -281,15 +282,27 @@ TEST(EmitterTree, AFloorUnderAGridOfSmallEmittersMatchesTheFormFactorSum) {
   }
 }
 
-// Off and auto on one emitter (two triangles): by power; on: the tree.
-TEST(EmitterTree, AutoLeavesASingleEmitterToThePowerChoice) {
+// Auto's pilot (integrator/emitter_pick.h): one emitter (two triangles, one leaf: the tree's
+// choice is the power choice) gains nothing; a floor under a wide grid of small emitters, seen
+// from above, gains many times (each point is lit mostly by the few squares near it).
+TEST(EmitterTree, AutoChoosesTheTreeWhereThePilotsVarianceFallsEnough) {
   SceneDescription d;
   test::add_mesh(d, test::make_quad({0, 0, 0}, {5, 0, 0}, {0, 0, -5}, test::add_material(d, test::diffuse(vec3(0.5f)))));
   test::add_mesh(d, test::make_quad({0, 1, 0}, {0.2f, 0, 0}, {0, 0, 0.2f}, test::add_material(d, test::emitter(vec3(5.0f)))));
-  const RenderScene rs(std::move(d), EnvironmentParams{});
-  EXPECT_FALSE(rs.area_lights->tree_used(LightTreeUse::Auto));
-  EXPECT_FALSE(rs.area_lights->tree_used(LightTreeUse::Off));
-  EXPECT_TRUE(rs.area_lights->tree_used(LightTreeUse::On));
+  const RenderScene one(std::move(d), EnvironmentParams{});
+  const RenderCamera above_one = one.camera(test::look_at({0, 0.8f, 2.5f}, {0, 0, 0}, 60.0f), 64, 36, {});
+  EXPECT_NEAR(emitter_tree_gain(one, above_one), 1.0, 1e-6);
+  EXPECT_FALSE(emitter_tree_used(one, above_one, LightTreeUse::Auto));
+  EXPECT_FALSE(emitter_tree_used(one, above_one, LightTreeUse::Off));
+  EXPECT_TRUE(emitter_tree_used(one, above_one, LightTreeUse::On));
+
+  EmitterGrid grid;
+  grid.rows = grid.cols = 32;
+  grid.flat = true;
+  const RenderScene many(grid.scene(), EnvironmentParams{});
+  const RenderCamera below_many = many.camera(test::look_at({0, 0.3f, 5.0f}, {0, 0, 0}, 60.0f), 64, 36, {});
+  EXPECT_GT(emitter_tree_gain(many, below_many), 4.0);
+  EXPECT_TRUE(emitter_tree_used(many, below_many, LightTreeUse::Auto));
 }
 
 }  // namespace

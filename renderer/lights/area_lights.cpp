@@ -126,15 +126,6 @@ AreaLights::AreaLights(const SceneDescription& scene, const SceneGeometry& geome
   tree_ = LightTree(bounds, kTreeLeaf);
 }
 
-bool AreaLights::tree_used(LightTreeUse use) const {
-  if (tree_.empty() || use == LightTreeUse::Off) return false;
-  return use == LightTreeUse::On || auto_tree();
-}
-
-bool AreaLights::auto_tree() const {
-  return tree_.size() > 64;  // placeholder: measured below
-}
-
 AreaLights::Shape AreaLights::shape_at(const HitRecord& where, float side) const {
   const SceneGeometry::Corners c = geometry_.corners(where);
   Shape sh{c.p0, c.p1 - c.p0, c.p2 - c.p0, vec3(0.0f), 0.0f};

@@ -39,13 +39,6 @@ class AreaLights {
   // power = emitted luminance x area x pi (x2 double-sided); one that moves: where it can be
   // over the shutter, any way.
   const LightTree& tree() const { return tree_; }
-  // Whether `use` has the tree choose (LightTreeUse::Auto: auto_tree() below).
-  bool tree_used(LightTreeUse use) const;
-  // Auto's statistic: how far the triangles' power is spread over space. The power-weighted
-  // mean squared distance of the triangles from their power-weighted centre, over the squared
-  // diagonal of the box of the brightest half of the power... (see the .cpp).
-  bool auto_tree() const;
-
   // The shading point the tree chooses a light for: its position and surface normal (either
   // side). A choice by power alone does not look at it.
   struct ShadingPlace {
