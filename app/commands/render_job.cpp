@@ -85,6 +85,10 @@ void print_summary(const RenderOptions& o, const FramePlan& to, const RenderSett
     print_status(fmt::format("tessera: paths guided by what {} sample waves learnt, in {} regions of space "
                              "(docs/materials-and-lights.md#path-guiding)",
                              s.guide_rounds, s.guide_regions));
+  if (s.emitter_tree_triangles > 0)
+    print_status(fmt::format("tessera: emissive triangles chosen by the light tree, from {} of them, at each path "
+                             "vertex (docs/materials-and-lights.md#many-lights)",
+                             s.emitter_tree_triangles));
   if (!result.profile.ranks.empty()) print_rank_summary(result.profile);
   if (settings.adaptive.on()) print_adaptive_summary(settings, result);
   std::string why;

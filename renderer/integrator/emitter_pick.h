@@ -31,4 +31,26 @@ struct EmitterPickParams {
 // the same for every thread count, tile, rank and resume.
 float emitter_pick_probability(const RenderScene& scene, const RenderCamera& camera, const EmitterPickParams& params = {});
 
+// Which way a vertex chooses its emissive triangle under LightTreeUse::Auto: by the light tree
+// (AreaLights::tree) where that cuts the variance of the light samples enough to pay for its
+// walk, else by power. Measured by a pilot like the one above: at a grid of camera hits, light
+// samples of the emitters' direct light (with visibility, materials left out), the same numbers
+// choosing by power and by the tree; the tree when the power choice's variance, summed over the
+// hits, is `gain` times the tree's or more. Many emitters spread over a hall gain 10x and more;
+// a few, or emitters on one small object seen from near (DamagedHelmet's), about 1x or less,
+// where the walk's cost (about a light sample's) is a loss.
+struct EmitterTreeParams {
+  int grid = 16;  // camera rays per side of the image
+  int directions = 8;  // light samples per camera hit and way of choosing
+  float gain = 2.0f;
+  float time = 0.0f;
+};
+// On: the tree (when there is one); Off: by power; Auto: the pilot's choice. Deterministic as
+// emitter_pick_probability is.
+bool emitter_tree_used(const RenderScene& scene, const RenderCamera& camera, LightTreeUse use,
+                       const EmitterTreeParams& params = {});
+// The pilot's ratio, the power choice's variance over the tree's (infinite where only the
+// tree's is 0; 1 where both are).
+double emitter_tree_gain(const RenderScene& scene, const RenderCamera& camera, const EmitterTreeParams& params = {});
+
 }  // namespace tessera

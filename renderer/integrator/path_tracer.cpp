@@ -215,6 +215,9 @@ struct PathState {
   float eta_scale = 1.0f;
   vec3 absorption{0.0f};  // of the volume the ray travels in (Beer-Lambert); 0 = none
   float bsdf_pdf = 0.0f;  // solid-angle pdf of the direction that led here; 0 = camera ray
+  // The vertex that direction left from, as the emitter tree chose a light for it: what an
+  // emitter's MIS weight at the end of the direction needs (with PathTracerParams::emitter_tree).
+  AreaLights::ShadingPlace from;
   // Straight passes through thin surfaces since the last scattering: they do not count as
   // bounces, and the light a pass reaches is weighed against light sampling from that
   // vertex, as far away as the whole straight line.
@@ -281,9 +284,11 @@ bool path_vertex(const RenderScene& scene, const PathTracerParams& params, PathS
   vec3 u_light(0.0f);
   AreaLights::Choice light;
   bool light_chosen = false;
+  // Where the emitter tree chooses for: the hit and its geometric normal (either side will do).
+  const AreaLights::ShadingPlace place{s.p, s.ng};
   auto choose_light = [&] {
     u_light = rng.next3();
-    light = scene.area_lights->choose(u_light.z, params.emitter_pick);
+    light = scene.area_lights->choose(u_light.z, params.emitter_pick, params.emitter_tree ? &place : nullptr);
     light_chosen = true;
   };
   if (light_sampling && !last && !(wavelength == 0.0f && scene.materials.material(s.material).dispersion > 0.0f))
@@ -300,7 +305,9 @@ bool path_vertex(const RenderScene& scene, const PathTracerParams& params, PathS
     from_vertex.t += passed;
     const float weight =
         bsdf_pdf > 0.0f && light_sampling
-            ? strategy_weight(mode, false, bsdf_pdf, scene.area_lights->pdf(hit, from_vertex, ray.direction, params.emitter_pick))
+            ? strategy_weight(mode, false, bsdf_pdf,
+                              scene.area_lights->pdf(hit, from_vertex, ray.direction, params.emitter_pick,
+                                                     params.emitter_tree ? &st.from : nullptr))
             : 1.0f;
     radiance += throughput * sp.emission * weight;
     if (vertex) vertex->emitted = throughput * sp.emission * weight;
@@ -372,6 +379,7 @@ bool path_vertex(const RenderScene& scene, const PathTracerParams& params, PathS
     return false;
   }
   bsdf_pdf = bs.pdf;
+  st.from = place;
   passed = 0.0f;
   if (bs.transmitted && !sp.thin_walled) absorption = front ? sp.absorption : vec3(0.0f);
   if (bs.transmitted && bs.lobe == GltfBsdf::kTransmission) eta_scale *= sqr(eta);

@@ -32,6 +32,9 @@ struct PathTracerParams {
   // anything that finishes its round).
   PathGuide* guide = nullptr;
   bool learn = false;
+  // The emissive triangle a vertex samples is chosen by the area lights' light tree from the
+  // vertex's position and normal (AreaLights::tree), instead of by power alone.
+  bool emitter_tree = false;
   float clamp = 0.0f;  // > 0: clamp each sample's radiance to this luminance (biased; off by default)
   // A camera ray that hits nothing adds no background (it still lights what rays reach):
   // the film's alpha says where the background shows, for compositing over a plate.

@@ -23,6 +23,10 @@ double textured_luminance(const MaterialTable& materials, const Material& m, con
   return std::max(sum / 4.0, 0.01 * emitted_luminance(m));
 }
 
+// Triangles in a leaf of the light tree at most: a shallower walk (each level two bounds'
+// importance), and a leaf's few neighbours chosen by power alone.
+constexpr int kTreeLeaf = 8;
+
 HitRecord at_time(HitRecord where, float time) {
   where.time = time;
   return where;
@@ -34,7 +38,11 @@ AreaLights::AreaLights(const SceneDescription& scene, const SceneGeometry& geome
     : geometry_(geometry), materials_(materials) {
   std::vector<double> power;
   std::vector<std::pair<std::size_t, const Material*>> textured_triangles;  // their power needs the texture
-  for (const SceneGeometry::PlacedPrimitive& pp : geometry.placed_primitives()) {
+  std::vector<LightBounds> bounds;  // for the tree; power below
+  const std::vector<SceneGeometry::PlacedPrimitive> placed = geometry.placed_primitives();
+  std::vector<Bounds3> shutter;  // each list's box over the shutter, when something moves
+  for (std::size_t list = 0; list < placed.size(); ++list) {
+    const SceneGeometry::PlacedPrimitive& pp = placed[list];
     const Material& m = materials.material(pp.mesh->material);
     const float le = emitted_luminance(m);
     if (!(le > 0.0f)) continue;
@@ -66,15 +74,33 @@ AreaLights::AreaLights(const SceneDescription& scene, const SceneGeometry& geome
       tri.radiance = constant;
       tri.where = where;
       double mean_area = area;
+      LightBounds b;
+      b.lo = glm::min(p0, glm::min(p1, p2));
+      b.hi = glm::max(p0, glm::max(p1, p2));
+      b.axis = centre.ng;
+      b.cos_spread = m.double_sided ? -1.0f : 1.0f;
+      b.cos_emit = std::cos(0.5f * kPi);
       if (pp.moves) {  // its front side as at the opening; chosen by its mean area over the steps
         tri.side = glm::dot(centre.ng, glm::cross(p1 - p0, p2 - p0)) < 0.0f ? -1.0f : 1.0f;
         const int steps = geometry.motion_steps();
         mean_area = 0.0;
-        for (int k = 0; k < steps; ++k)
-          mean_area += shape_at(at_time(where, static_cast<float>(k) / static_cast<float>(steps - 1)), tri.side).area / steps;
+        for (int k = 0; k < steps; ++k) {
+          const HitRecord then = at_time(where, static_cast<float>(k) / static_cast<float>(steps - 1));
+          mean_area += shape_at(then, tri.side).area / steps;
+          const SceneGeometry::Corners c = geometry.corners(then);  // a deforming mesh: between steps' corners
+          b.lo = glm::min(b.lo, glm::min(c.p0, glm::min(c.p1, c.p2)));
+          b.hi = glm::max(b.hi, glm::max(c.p0, glm::max(c.p1, c.p2)));
+        }
+        if (pp.instance != RTC_INVALID_GEOMETRY_ID) {  // a placement may turn between steps: its list's sweep
+          if (shutter.empty()) shutter = geometry.shutter_bounds();
+          b.lo = glm::min(b.lo, shutter[list].lo);
+          b.hi = glm::max(b.hi, shutter[list].hi);
+        }
+        b.cos_spread = -1.0f;  // turning: any way
         tri.shape = shape_at(where, tri.side);
       }
       triangles_.push_back(tri);
+      bounds.push_back(b);
       const double weight = std::isfinite(mean_area) ? mean_area * (m.double_sided ? 2.0 : 1.0) : 0.0;
       if (textured) textured_triangles.emplace_back(power.size(), &m);
       power.push_back(textured ? weight : weight * le);  // textured: times its radiance, below
@@ -92,6 +118,12 @@ AreaLights::AreaLights(const SceneDescription& scene, const SceneGeometry& geome
     first_.clear();
   }
   for (std::size_t i = 0; i < triangles_.size(); ++i) triangles_[i].pmf = by_power_.pmf(i);
+  if (triangles_.empty()) return;
+  // The tree's power: what the alias table weighs by, times pi (radiance to flux); a
+  // triangle the table never chooses stays out.
+  for (std::size_t i = 0; i < bounds.size(); ++i)
+    bounds[i].power = triangles_[i].pmf > 0.0f ? static_cast<float>(power[i] * kPi) : 0.0f;
+  tree_ = LightTree(bounds, kTreeLeaf);
 }
 
 AreaLights::Shape AreaLights::shape_at(const HitRecord& where, float side) const {
@@ -106,20 +138,29 @@ AreaLights::Shape AreaLights::shape_at(const HitRecord& where, float side) const
   return sh;
 }
 
-AreaLights::Choice AreaLights::choose(float u_select, float pick) const {
+AreaLights::Choice AreaLights::choose(float u_select, float pick, const ShadingPlace* tree) const {
   // u_select / pick is uniform in [0, 1) below pick: the same stratified number chooses both.
   if (triangles_.empty() || !(u_select < pick)) return {};
-  const std::size_t i = by_power_.sample(u_select / pick);
+  std::size_t i;
+  float pmf;
+  if (tree) {
+    const LightTree::Choice c = tree_.sample(tree->p, tree->n, u_select / pick);
+    if (!(c.pmf > 0.0f)) return {};  // no triangle can light the place
+    i = c.light, pmf = c.pmf;
+  } else {
+    i = by_power_.sample(u_select / pick);
+    pmf = triangles_[i].pmf;
+  }
   const Triangle* tri = &triangles_[i];
   __builtin_prefetch(tri);
   __builtin_prefetch(reinterpret_cast<const char*>(tri) + 64);
-  return {i, pick};
+  return {i, pick, pmf};
 }
 
 bool AreaLights::sample(const vec3& p, float time, const Choice& light, const vec2& u_point, AreaLightSample& s) const {
   if (light.index >= triangles_.size()) return false;
   const Triangle& tri = triangles_[light.index];
-  const float pmf = light.pick * tri.pmf;
+  const float pmf = light.pick * light.pmf;
   if (pmf <= 0.0f) return false;
   const Shape sh = tri.moves ? shape_at(at_time(tri.where, time), tri.side) : tri.shape;
   if (!(sh.area > 0.0f)) return false;  // a moving one where it collapses
@@ -147,7 +188,8 @@ vec3 AreaLights::radiance(const Choice& light, const AreaLightSample& s) const {
   return tri.textured ? materials_.emission(tri.texturing.at(s.at.x, s.at.y)) : tri.radiance;
 }
 
-float AreaLights::pdf(const HitRecord& hit, const SurfaceHit& surface, const vec3& direction, float pick) const {
+float AreaLights::pdf(const HitRecord& hit, const SurfaceHit& surface, const vec3& direction, float pick,
+                      const ShadingPlace* tree) const {
   const auto it = first_.find(list_key(hit.geom, hit.instance));
   if (it == first_.end()) return 0.0f;
   const std::uint32_t i = it->second + hit.prim;
@@ -155,8 +197,10 @@ float AreaLights::pdf(const HitRecord& hit, const SurfaceHit& surface, const vec
   const Triangle& tri = triangles_[i];
   const float abs_cos = std::fabs(glm::dot(surface.ng, direction));
   if (tri.pmf <= 0.0f || !(abs_cos > 0.0f)) return 0.0f;
+  const float pmf = tree ? tree_.pmf(tree->p, tree->n, i) : tri.pmf;
+  if (!(pmf > 0.0f)) return 0.0f;
   const float area = tri.moves ? shape_at(at_time(tri.where, hit.time), tri.side).area : tri.shape.area;
-  return pick * tri.pmf * surface.t * surface.t / (area * abs_cos);
+  return pick * pmf * surface.t * surface.t / (area * abs_cos);
 }
 
 }  // namespace tessera

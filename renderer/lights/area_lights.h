@@ -1,6 +1,8 @@
 // Emissive triangles as area lights for next-event estimation: one is chosen in proportion
-// to its emitted power, then a point uniformly on it. A triangle that moves or deforms while
-// the shutter is open is sampled where it is at the path's time, with its area then.
+// to its emitted power (an alias table), or by a light tree over them from the shading point
+// (by power, distance and orientation: many lights spread over a large space), then a point
+// uniformly on it. A triangle that moves or deforms while the shutter is open is sampled where
+// it is at the path's time, with its area then.
 #pragma once
 
 #include <cstddef>
@@ -9,6 +11,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "renderer/lights/light_tree.h"
 #include "renderer/sampling/alias_table.h"
 #include "renderer/materials/materials.h"
 #include "renderer/geometry/scene_geometry.h"
@@ -30,15 +33,29 @@ class AreaLights {
   bool empty() const { return triangles_.empty(); }
   std::size_t size() const { return triangles_.size(); }
 
+  // The light tree over the triangles (leaves of up to a few triangles, chosen there by
+  // power: area_lights.cpp, kTreeLeaf), built with them. Its bounds per triangle: the box of its corners, its front
+  // normal as the cone's axis with emission up to 90 degrees from it (double-sided: any way),
+  // power = emitted luminance x area x pi (x2 double-sided); one that moves: where it can be
+  // over the shutter, any way.
+  const LightTree& tree() const { return tree_; }
+  // The shading point the tree chooses a light for: its position and surface normal (either
+  // side). A choice by power alone does not look at it.
+  struct ShadingPlace {
+    vec3 p{0.0f}, n{0.0f};
+  };
+
   // The light u_select chooses, its record prefetched: with probability `pick` one of them
   // (by power; integrator/emitter_pick.h), else none. With no light (and before a choice), an
   // index past the end. A path chooses as soon as it knows its hit, so that the record (one
   // of thousands: a cache miss) arrives while the material is evaluated.
+  // `tree`: the light tree chooses for that place; null: by power.
   struct Choice {
     std::size_t index = std::numeric_limits<std::size_t>::max();
     float pick = 1.0f;  // the probability of choosing any light: a factor of the sample's pdf
+    float pmf = 0.0f;  // the probability of choosing this one, once any is chosen
   };
-  Choice choose(float u_select, float pick = 1.0f) const;
+  Choice choose(float u_select, float pick = 1.0f, const ShadingPlace* tree = nullptr) const;
 
   // Samples a point on the chosen light as seen from `p` at `time`; false when the sample
   // carries nothing. A textured emission's texels are prefetched: radiance() reads them, after
@@ -48,8 +65,10 @@ class AreaLights {
 
   // Solid-angle pdf with which sample() would have produced the hit `hit` (a point on an
   // emissive triangle at hit.time, surface.t away from the shading point along `direction`)
-  // after a choice with probability `pick` of any light.
-  float pdf(const HitRecord& hit, const SurfaceHit& surface, const vec3& direction, float pick = 1.0f) const;
+  // after a choice with probability `pick` of any light; `tree`: chosen by the tree for that
+  // shading place (the probability its walk gives, exactly), null: by power.
+  float pdf(const HitRecord& hit, const SurfaceHit& surface, const vec3& direction, float pick = 1.0f,
+            const ShadingPlace* tree = nullptr) const;
 
  private:
   // Where a triangle is: corner, edges, front normal and area.
@@ -67,7 +86,7 @@ class AreaLights {
     bool textured = false;  // emission varies: evaluate the material at each point
     bool double_sided = false;
     bool moves = false;  // moves or deforms: its shape comes from the geometry at each time
-    float pmf = 0.0f;  // the probability of choosing it
+    float pmf = 0.0f;  // the probability of choosing it by power
     alignas(64) TextureCorners texturing;  // where the material's textures are read, when textured
     vec3 radiance{0.0f};  // the emission when it is constant over the triangle
     HitRecord where;  // geom, prim and instance, to evaluate the surface at a point
@@ -85,6 +104,7 @@ class AreaLights {
   const MaterialTable& materials_;
   std::vector<Triangle> triangles_;
   AliasTable by_power_;
+  LightTree tree_;
   std::unordered_map<std::uint64_t, std::uint32_t> first_;  // list_key -> its first triangle
 };
 

@@ -9,6 +9,8 @@
 #include <cmath>
 #include <limits>
 
+#include <xmmintrin.h>
+
 #include "renderer/util/math.h"
 
 namespace tessera {
@@ -23,32 +25,9 @@ struct LightBounds {
   bool empty() const { return !(power > 0.0f); }
 
   // A bound of the light the group sends to `p` on a surface of normal `n` (either side;
-  // n = 0: no surface, as in a medium).
-  float importance(const vec3& p, const vec3& n) const {
-    if (empty()) return 0.0f;
-    const vec3 centre = 0.5f * (lo + hi), diagonal = hi - lo, wi = p - centre;
-    const float dist2 = glm::dot(wi, wi);
-    // The distance, kept from below at half the box's diagonal: inside it a group is as near
-    // as it can be, and a point light a shading point sits on does not make the weight infinite.
-    const float d2 = std::max({dist2, 0.5f * glm::length(diagonal), 1e-12f});
-    // cos and sin of the angles of the bound: the axis to the point, the box as seen from it.
-    const float len = std::sqrt(dist2);
-    const vec3 w = len > 0.0f ? wi / len : axis;
-    const float cos_w = glm::dot(axis, w), sin_w = safe_sqrt(1.0f - cos_w * cos_w);
-    const float cos_b = cos_subtended(dist2, diagonal), sin_b = safe_sqrt(1.0f - cos_b * cos_b);
-    const float sin_o = safe_sqrt(1.0f - cos_spread * cos_spread);
-    // The smallest angle between a light's axis and the direction to the point: theta_w less
-    // the axes' spread, less the box's angle (each clamped at 0).
-    const float cos_x = cos_minus(sin_w, cos_w, sin_o, cos_spread), sin_x = sin_minus(sin_w, cos_w, sin_o, cos_spread);
-    const float cos_theta = cos_minus(sin_x, cos_x, sin_b, cos_b);
-    if (cos_theta <= cos_emit) return 0.0f;
-    float importance = power * cos_theta / d2;
-    if (n != vec3(0.0f)) {  // the incident cosine, at its largest over the box
-      const float cos_i = std::fabs(glm::dot(w, n)), sin_i = safe_sqrt(1.0f - cos_i * cos_i);
-      importance *= cos_minus(sin_i, cos_i, sin_b, cos_b);
-    }
-    return std::min(std::max(importance, 0.0f), std::numeric_limits<float>::max());
-  }
+  // n = 0: no surface, as in a medium): zero only where no light of the group can reach it.
+  // The one computation is LightBounds4::importance's, in one lane.
+  float importance(const vec3& p, const vec3& n) const;
 
   // The bounds of both groups together.
   static LightBounds merge(const LightBounds& a, const LightBounds& b) {
@@ -64,21 +43,6 @@ struct LightBounds {
   }
 
  private:
-  static float safe_sqrt(float x) { return std::sqrt(std::max(x, 0.0f)); }
-  // cos(a - b) and sin(a - b), as 1 and 0 where b >= a (the difference clamped at 0).
-  static float cos_minus(float sin_a, float cos_a, float sin_b, float cos_b) {
-    return cos_a > cos_b ? 1.0f : cos_a * cos_b + sin_a * sin_b;
-  }
-  static float sin_minus(float sin_a, float cos_a, float sin_b, float cos_b) {
-    return cos_a > cos_b ? 0.0f : sin_a * cos_b - cos_a * sin_b;
-  }
-  // The cosine of the half-angle of the cone from a point d2 (squared) from the box's centre
-  // that holds the box's bounding sphere (-1 from inside the sphere: every direction).
-  static float cos_subtended(float d2, const vec3& diagonal) {
-    const float r2 = 0.25f * glm::dot(diagonal, diagonal);
-    if (d2 <= r2) return -1.0f;
-    return safe_sqrt(1.0f - r2 / d2);
-  }
   // The smallest cone holding both cones of axes (pbrt-v4's DirectionCone::Union).
   static void merge_cones(const LightBounds& a, const LightBounds& b, LightBounds& m) {
     const float theta_a = std::acos(std::clamp(a.cos_spread, -1.0f, 1.0f));
@@ -112,5 +76,106 @@ struct LightBounds {
     m.cos_spread = std::cos(std::min(theta_o + 1e-4f, kPi));  // widened past float rounding
   }
 };
+
+// Four groups' bounds side by side (structure of arrays), with what depends on them alone
+// worked out once: a tree node's four children, whose importance at a point one pass of SSE
+// computes (one square root for the distances, one division, three square roots for the
+// angles, for all four). An unused lane has no power: importance 0.
+struct LightBounds4 {
+  __m128 cx, cy, cz;  // the boxes' centres
+  __m128 r2, r;  // the squared radius and radius of each box's bounding sphere
+  __m128 ax, ay, az;  // the cones' axes
+  __m128 cos_spread, sin_spread, cos_emit;
+  __m128 power;  // 0: no group in the lane
+  // 1 / the least squared distance importance() divides by: half the box's diagonal (inside
+  // it a group is as near as it can be, and a point light a shading point sits on does not
+  // make the weight infinite), at least 1e-12.
+  __m128 inv_d2_floor;
+
+  LightBounds4();
+  void set(int lane, const LightBounds& b);  // an empty b leaves the lane unused
+
+  // Each group's bound of the light it sends to `p` on a surface of normal `n` (either side;
+  // n = 0: no surface, as in a medium), pbrt-v4's LightBounds::Importance: power x the cosine
+  // of the smallest angle between a light's axis and the direction to p (the axis' spread and
+  // the box's angle taken off) / the squared distance, x the largest incident cosine over the
+  // box; 0 past the emission angle.
+  void importance(const vec3& p, const vec3& n, float out[4]) const {
+    const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f);
+    auto select = [](__m128 mask, __m128 a, __m128 b) { return _mm_or_ps(_mm_and_ps(mask, a), _mm_andnot_ps(mask, b)); };
+    auto safe_sqrt = [&](__m128 x) { return _mm_sqrt_ps(_mm_max_ps(x, zero)); };
+    // cos(a - b) and sin(a - b), as 1 and 0 where b >= a (the difference clamped at 0).
+    auto cos_minus = [&](__m128 sin_a, __m128 cos_a, __m128 sin_b, __m128 cos_b) {
+      return select(_mm_cmpgt_ps(cos_a, cos_b), one, _mm_add_ps(_mm_mul_ps(cos_a, cos_b), _mm_mul_ps(sin_a, sin_b)));
+    };
+    auto sin_minus = [&](__m128 sin_a, __m128 cos_a, __m128 sin_b, __m128 cos_b) {
+      return select(_mm_cmpgt_ps(cos_a, cos_b), zero, _mm_sub_ps(_mm_mul_ps(sin_a, cos_b), _mm_mul_ps(cos_a, sin_b)));
+    };
+    const __m128 wx = _mm_sub_ps(_mm_set1_ps(p.x), cx), wy = _mm_sub_ps(_mm_set1_ps(p.y), cy),
+                 wz = _mm_sub_ps(_mm_set1_ps(p.z), cz);
+    const __m128 dist2 = _mm_add_ps(_mm_add_ps(_mm_mul_ps(wx, wx), _mm_mul_ps(wy, wy)), _mm_mul_ps(wz, wz));
+    const __m128 away = _mm_cmpgt_ps(dist2, zero);
+    const __m128 inv_len = _mm_and_ps(away, _mm_div_ps(one, _mm_sqrt_ps(dist2)));
+    const __m128 inv_d2 = _mm_min_ps(_mm_mul_ps(inv_len, inv_len), inv_d2_floor);  // 1 / max(d^2, floor)
+    // The direction from the centre to p (the axis from the centre itself).
+    const __m128 ux = select(away, _mm_mul_ps(wx, inv_len), ax), uy = select(away, _mm_mul_ps(wy, inv_len), ay),
+                 uz = select(away, _mm_mul_ps(wz, inv_len), az);
+    const __m128 cos_w = _mm_add_ps(_mm_add_ps(_mm_mul_ps(ax, ux), _mm_mul_ps(ay, uy)), _mm_mul_ps(az, uz));
+    const __m128 sin_w = safe_sqrt(_mm_sub_ps(one, _mm_mul_ps(cos_w, cos_w)));
+    // The box as seen from p: its bounding sphere's half-angle (sin = r / d), every direction
+    // from inside it.
+    const __m128 inside = _mm_cmple_ps(dist2, r2);
+    const __m128 sin_b = _mm_andnot_ps(inside, _mm_min_ps(_mm_mul_ps(r, inv_len), one));
+    const __m128 cos_b = select(inside, _mm_set1_ps(-1.0f), safe_sqrt(_mm_sub_ps(one, _mm_mul_ps(sin_b, sin_b))));
+    const __m128 cos_x = cos_minus(sin_w, cos_w, sin_spread, cos_spread);
+    const __m128 sin_x = sin_minus(sin_w, cos_w, sin_spread, cos_spread);
+    const __m128 cos_theta = cos_minus(sin_x, cos_x, sin_b, cos_b);
+    __m128 importance = _mm_mul_ps(_mm_mul_ps(power, cos_theta), inv_d2);
+    if (n != vec3(0.0f)) {  // the incident cosine, at its largest over the box
+      const __m128 dot = _mm_add_ps(_mm_add_ps(_mm_mul_ps(ux, _mm_set1_ps(n.x)), _mm_mul_ps(uy, _mm_set1_ps(n.y))),
+                                    _mm_mul_ps(uz, _mm_set1_ps(n.z)));
+      const __m128 cos_i = _mm_andnot_ps(_mm_set1_ps(-0.0f), dot);
+      const __m128 sin_i = safe_sqrt(_mm_sub_ps(one, _mm_mul_ps(cos_i, cos_i)));
+      importance = _mm_mul_ps(importance, cos_minus(sin_i, cos_i, sin_b, cos_b));
+    }
+    // 0 past the emission angle, in an unused lane, and for NaN; at most the largest float.
+    const __m128 lit = _mm_and_ps(_mm_cmpgt_ps(cos_theta, cos_emit), _mm_cmpgt_ps(power, zero));
+    importance = _mm_and_ps(lit, _mm_min_ps(_mm_max_ps(importance, zero), _mm_set1_ps(std::numeric_limits<float>::max())));
+    _mm_storeu_ps(out, importance);
+  }
+};
+
+inline LightBounds4::LightBounds4() {
+  const __m128 zero = _mm_setzero_ps();
+  cx = cy = cz = r2 = r = ax = ay = az = cos_spread = sin_spread = cos_emit = power = inv_d2_floor = zero;
+}
+
+inline void LightBounds4::set(int lane, const LightBounds& b) {
+  if (b.empty()) return;
+  auto put = [lane](__m128& v, float x) {
+    alignas(16) float f[4];
+    _mm_store_ps(f, v);
+    f[lane] = x;
+    v = _mm_load_ps(f);
+  };
+  const vec3 diagonal = b.hi - b.lo, centre = 0.5f * (b.lo + b.hi);
+  const float radius2 = 0.25f * glm::dot(diagonal, diagonal);
+  put(cx, centre.x), put(cy, centre.y), put(cz, centre.z);
+  put(r2, radius2), put(r, std::sqrt(radius2));
+  put(ax, b.axis.x), put(ay, b.axis.y), put(az, b.axis.z);
+  put(cos_spread, b.cos_spread);
+  put(sin_spread, std::sqrt(std::max(1.0f - b.cos_spread * b.cos_spread, 0.0f)));
+  put(cos_emit, b.cos_emit);
+  put(power, b.power);
+  put(inv_d2_floor, 1.0f / std::max(0.5f * glm::length(diagonal), 1e-12f));
+}
+
+inline float LightBounds::importance(const vec3& p, const vec3& n) const {
+  LightBounds4 one;
+  one.set(0, *this);
+  float out[4];
+  one.importance(p, n, out);
+  return out[0];
+}
 
 }  // namespace tessera

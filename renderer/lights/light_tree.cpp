@@ -50,22 +50,56 @@ LightTree::LightTree(const std::vector<PunctualLight>& lights) : leaf_of_(lights
     const LightBounds b = bounds_of(lights[i]);
     if (!b.empty()) positioned.emplace_back(b, i);  // a light of no power is never chosen
   }
-  in_tree_ = positioned.size();
-  if (positioned.empty()) return;
-  if (positioned.size() >= (std::size_t(1) << 62)) throw std::length_error("too many lights for the light tree");
-  nodes_.reserve(2 * positioned.size() - 1);
-  build(positioned, 0, positioned.size(), 0, 0);
+  build_over(positioned, 1);
+}
+
+LightTree::LightTree(const std::vector<LightBounds>& lights, int leaf_size) : leaf_of_(lights.size()) {
+  std::vector<std::pair<LightBounds, std::uint32_t>> positioned;
+  for (std::uint32_t i = 0; i < lights.size(); ++i)
+    if (!lights[i].empty()) positioned.emplace_back(lights[i], i);
+  build_over(positioned, leaf_size);
+}
+
+void LightTree::build_over(std::vector<std::pair<LightBounds, std::uint32_t>>& lights, int leaf_size) {
+  in_tree_ = lights.size();
+  if (lights.empty()) return;
+  if (lights.size() >= (std::size_t(1) << 31)) throw std::length_error("too many lights for the light tree");
+  members_.reserve(lights.size());
+  member_power_.reserve(lights.size());
+  leaf_power_.reserve(lights.size());
+  std::vector<Binary> binary;
+  binary.reserve(2 * lights.size() - 1);
+  build(lights, 0, lights.size(), static_cast<std::size_t>(std::max(leaf_size, 1)), binary);
+  if (binary[0].count > 0) {  // one leaf: a root of one child
+    nodes_.emplace_back();
+    nodes_[0].bounds.set(0, binary[0].bounds);
+    nodes_[0].child[0] = binary[0].begin;
+    nodes_[0].count[0] = binary[0].count;
+    for (std::uint32_t m = binary[0].begin; m < binary[0].begin + binary[0].count; ++m) leaf_of_[members_[m]] = {0, 1, m};
+    return;
+  }
+  collapse(binary, 0, 0, 0);
 }
 
 // Splits at the median of the lights' centres along the longest axis of their box: a
-// balanced tree, whose depth (at most 62 here) the 64-bit trails hold.
+// balanced tree (at most 31 binary levels here, so at most 31 levels of four children,
+// whose two-bit ways the 64-bit trails hold). Returns the index of the subtree's root.
 std::uint32_t LightTree::build(std::vector<std::pair<LightBounds, std::uint32_t>>& lights, std::size_t begin,
-                               std::size_t end, std::uint64_t trail, int depth) {
-  const auto index = static_cast<std::uint32_t>(nodes_.size());
-  nodes_.emplace_back();
-  if (end - begin == 1) {
-    nodes_[index] = {lights[begin].first, lights[begin].second, true};
-    leaf_of_[lights[begin].second] = {index, trail, depth};
+                               std::size_t end, std::size_t leaf_size, std::vector<Binary>& binary) {
+  const auto index = static_cast<std::uint32_t>(binary.size());
+  binary.emplace_back();
+  if (end - begin <= leaf_size) {
+    Binary leaf;
+    leaf.bounds = lights[begin].first;
+    for (std::size_t i = begin + 1; i < end; ++i) leaf.bounds = LightBounds::merge(leaf.bounds, lights[i].first);
+    leaf.begin = static_cast<std::uint32_t>(members_.size());
+    leaf.count = static_cast<std::uint32_t>(end - begin);
+    for (std::size_t i = begin; i < end; ++i) {
+      members_.push_back(lights[i].second);
+      member_power_.push_back(lights[i].first.power);
+      leaf_power_.push_back(leaf.bounds.power);
+    }
+    binary[index] = leaf;
     return index;
   }
   vec3 lo(std::numeric_limits<float>::infinity()), hi(-std::numeric_limits<float>::infinity());
@@ -82,10 +116,41 @@ std::uint32_t LightTree::build(std::vector<std::pair<LightBounds, std::uint32_t>
     const float ca = a.first.lo[axis] + a.first.hi[axis], cb = b.first.lo[axis] + b.first.hi[axis];
     return ca < cb || (ca == cb && a.second < b.second);
   });
-  build(lights, begin, mid, trail, depth + 1);
-  const std::uint32_t second = build(lights, mid, end, trail | (std::uint64_t(1) << depth), depth + 1);
-  const LightBounds merged = LightBounds::merge(nodes_[index + 1].bounds, nodes_[second].bounds);
-  nodes_[index] = {merged, second, false};
+  const std::uint32_t first = build(lights, begin, mid, leaf_size, binary);
+  const std::uint32_t second = build(lights, mid, end, leaf_size, binary);
+  Binary node;
+  node.bounds = LightBounds::merge(binary[first].bounds, binary[second].bounds);
+  node.first = first, node.second = second;
+  binary[index] = node;
+  return index;
+}
+
+std::uint32_t LightTree::collapse(const std::vector<Binary>& binary, std::uint32_t b, std::uint64_t trail, int depth) {
+  const auto index = static_cast<std::uint32_t>(nodes_.size());
+  nodes_.emplace_back();
+  std::uint32_t slots[4];
+  int count = 0;
+  for (std::uint32_t c : {binary[b].first, binary[b].second}) {
+    if (binary[c].count > 0) {
+      slots[count++] = c;
+    } else {
+      slots[count++] = binary[c].first;
+      slots[count++] = binary[c].second;
+    }
+  }
+  for (int k = 0; k < count; ++k) {
+    const Binary& c = binary[slots[k]];
+    const std::uint64_t way = trail | (std::uint64_t(k) << (2 * depth));
+    nodes_[index].bounds.set(k, c.bounds);
+    if (c.count > 0) {
+      nodes_[index].child[k] = c.begin;
+      nodes_[index].count[k] = c.count;
+      for (std::uint32_t m = c.begin; m < c.begin + c.count; ++m) leaf_of_[members_[m]] = {way, depth + 1, m};
+    } else {
+      const std::uint32_t child = collapse(binary, slots[k], way, depth + 1);
+      nodes_[index].child[k] = child;  // nodes_ may have moved: indexed again
+    }
+  }
   return index;
 }
 
@@ -94,46 +159,69 @@ bool LightTree::used(LightTreeUse use) const {
   return use == LightTreeUse::On || size() > kLightTreeAutoMin;
 }
 
-float LightTree::first_child_probability(std::uint32_t node, const vec3& p, const vec3& n) const {
-  const float a = nodes_[node + 1].bounds.importance(p, n), b = nodes_[nodes_[node].child].bounds.importance(p, n);
-  if (!(a + b > 0.0f)) return -1.0f;
-  if (!std::isfinite(a + b)) return std::isfinite(a) ? 0.0f : std::isfinite(b) ? 1.0f : 0.5f;
-  return a / (a + b);
+bool LightTree::child_importance(const Node& node, const vec3& p, const vec3& n, float imp[4], float& total) const {
+  node.bounds.importance(p, n, imp);
+  total = (imp[0] + imp[1]) + (imp[2] + imp[3]);
+  if (!(total > 0.0f)) return false;
+  if (!std::isfinite(total)) {
+    total = 0.0f;
+    for (int k = 0; k < 4; ++k) total += imp[k] = std::isinf(imp[k]) ? 1.0f : 0.0f;
+    if (!(total > 0.0f)) return false;
+  }
+  return true;
 }
 
 LightTree::Choice LightTree::sample(const vec3& p, const vec3& n, float u) const {
   if (empty()) return {};
   std::uint32_t node = 0;
   float pmf = 1.0f;
-  while (!nodes_[node].leaf) {
-    const float first = first_child_probability(node, p, n);
-    if (first < 0.0f) return {};
-    if (u < first) {
-      u = std::min(u / first, 0x1.fffffep-1f);
-      pmf *= first;
-      node = node + 1;
-    } else {
-      u = std::min((u - first) / (1.0f - first), 0x1.fffffep-1f);
-      pmf *= 1.0f - first;
-      node = nodes_[node].child;
+  for (;;) {
+    const Node& here = nodes_[node];
+    float imp[4], total;
+    if (!child_importance(here, p, n, imp, total)) return {};
+    // The child whose share of [0, total) holds u x total, u made uniform again within it;
+    // counted without branches (a mispredicted one costs as much as the importance), a child
+    // of no importance never (its share is empty), but for rounding at the very end.
+    const float target = u * total;
+    const float below[4] = {0.0f, imp[0], imp[0] + imp[1], (imp[0] + imp[1]) + imp[2]};
+    int k = int(target >= below[1]) + int(target >= below[2]) + int(target >= below[3]);
+    while (!(imp[k] > 0.0f)) k = (k + 3) & 3;  // rounding past the last: the last that has a share
+    u = std::min(std::max((target - below[k]) / imp[k], 0.0f), 0x1.fffffep-1f);
+    pmf *= imp[k] / total;
+    if (here.count[k] == 0) {
+      node = here.child[k];
+      continue;
     }
+    const std::uint32_t first = here.child[k], count = here.count[k];
+    if (count == 1) return {members_[first], pmf};
+    // In a leaf of several: by power, the share of each its probability.
+    const float leaf_power = leaf_power_[first], leaf_target = u * leaf_power;
+    std::uint32_t m = first;
+    float sum = 0.0f;
+    for (; m + 1 < first + count; ++m) {
+      sum += member_power_[m];
+      if (leaf_target < sum) break;
+    }
+    return {members_[m], pmf * (member_power_[m] / leaf_power)};
   }
-  return {nodes_[node].child, pmf};
 }
 
 float LightTree::pmf(const vec3& p, const vec3& n, std::uint32_t light) const {
   if (light >= leaf_of_.size() || leaf_of_[light].depth < 0) return 0.0f;
   const Leaf& leaf = leaf_of_[light];
-  std::uint32_t node = 0;
+  std::uint32_t node = 0, count = 0;
   float pmf = 1.0f;
   for (int d = 0; d < leaf.depth; ++d) {
-    const float first = first_child_probability(node, p, n);
-    if (first < 0.0f) return 0.0f;
-    const bool second = (leaf.trail >> d) & 1u;
-    pmf *= second ? 1.0f - first : first;
-    node = second ? nodes_[node].child : node + 1;
+    const Node& here = nodes_[node];
+    float imp[4], total;
+    if (!child_importance(here, p, n, imp, total)) return 0.0f;
+    const int k = static_cast<int>((leaf.trail >> (2 * d)) & 3u);
+    if (!(imp[k] > 0.0f)) return 0.0f;
+    pmf *= imp[k] / total;
+    node = here.child[k], count = here.count[k];
   }
-  return pmf;
+  if (count == 1) return pmf;
+  return pmf * (member_power_[leaf.member] / leaf_power_[leaf.member]);
 }
 
 }  // namespace tessera

@@ -17,6 +17,9 @@ CameraSampler::CameraSampler(const RenderScene& scene, const RenderCamera& camer
     params_.emitter_pick = settings.emitter_pick > 0.0f ? std::min(settings.emitter_pick, 1.0f)
                                                         : emitter_pick_probability(scene, camera);
   params_.light_tree = scene.light_tree.used(settings.light_tree);
+  // One strategy alone has no MIS weight to keep; the tree serves light sampling only.
+  params_.emitter_tree = settings.light_sampling != LightSampling::BsdfOnly &&
+                         emitter_tree_used(scene, camera, settings.light_tree);
   params_.clamp = settings.clamp;
   params_.transparent_background = settings.aovs.coverage;
   // Motion blur: each camera sample draws its time, after the film and lens positions. A

@@ -54,6 +54,7 @@ class CameraSampler {
     params_.guide = guide;
     params_.learn = guide && learn;
   }
+  bool samples_emitter_tree() const { return params_.emitter_tree; }  // emissive triangles chosen by the tree
   // n such samples: their radiance, each the same; counted as dropped when it is not finite.
   const vec3& background_samples(int n, PathCounters& counters) const;
   template <typename Each>

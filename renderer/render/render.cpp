@@ -284,6 +284,7 @@ RenderResult render_frame(const RenderScene& scene, const RenderCamera& camera,
   stats.emitter_pick = sampler.emitter_pick();
   stats.light_tree_lights = sampler.samples_light_tree() ? scene.light_tree.size() : 0;
   if (guide.guide()) stats.guide_rounds = guide.guide()->rounds(), stats.guide_regions = guide.guide()->regions();
+  stats.emitter_tree_triangles = sampler.samples_emitter_tree() ? scene.area_lights->tree().size() : 0;
   RenderResult result;
   result.stats = stats;
   result.profile = recorder.finish();

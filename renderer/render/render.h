@@ -51,7 +51,9 @@ struct RenderSettings {
   float emitter_pick = 0.0f;
   float clamp = 0.0f;  // > 0: clamp each sample's luminance (biased, off by default)
   // Whether a path vertex samples one punctual light from the light tree or every one
-  // (renderer/lights/light_tree.h; Auto: the tree with more than kLightTreeAutoMin lights).
+  // (renderer/lights/light_tree.h; Auto: the tree with more than kLightTreeAutoMin lights), and
+  // whether the emissive triangle it samples is chosen by their light tree or by power
+  // (AreaLights::tree_used; Auto: AreaLights::auto_tree).
   LightTreeUse light_tree = LightTreeUse::Auto;
   // Path guiding (renderer/guiding/path_guide.h, render/frame_guide.h): paths draw their
   // directions in part from the incident light learnt in the first waves (Auto:
@@ -98,6 +100,7 @@ struct RenderStats {
   std::size_t light_tree_lights = 0;  // the point and spot lights a vertex chose one of; 0: no tree
   int guide_rounds = 0;  // path guiding: the rounds the guide learnt in (0: not guided)
   std::size_t guide_regions = 0;  // the regions of space it guides in
+  std::size_t emitter_tree_triangles = 0;  // the emissive triangles the tree chose among; 0: by power
   double efficiency = 1.0, imbalance = 1.0;  // see LoadBalance
 };
 
