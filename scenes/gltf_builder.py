@@ -1,5 +1,6 @@
 """Helpers shared by the scene generators under scenes/ (standard library only, deterministic).
 
+- `document`: a whole glTF file's bytes from its nodes, camera, meshes, materials and buffer.
 - `BufferBuilder`: one glTF buffer being filled: buffer views (each start 4-byte aligned),
   accessors (POSITION with the min/max the specification requires, written as the shortest
   decimal that reads back as the stored float32), index accessors (16-bit when they fit),
@@ -17,6 +18,7 @@ A generator beside this file imports it with:
 
 import argparse
 import base64
+import json
 import os
 import sys
 import math
@@ -405,6 +407,27 @@ def prism(profile, height, base_y=0.0):
         j = (i + 1) % k
         m.flat_polygon([bottom[i], bottom[j], top[j], top[i]])
     return m
+
+
+def document(buffers, meshes, materials, nodes, camera, asset, extensions_used=(), extensions=None):
+    """One glTF file's bytes: the nodes (all in scene 0), one camera, the meshes and materials,
+    one embedded buffer; `asset` is {"generator": ..., "copyright": ...}; `extensions` (the
+    document's own, e.g. KHR_lights_punctual's lights) only when given."""
+    gltf = {"asset": dict({"version": "2.0"}, **asset), "extensionsUsed": list(extensions_used)}
+    if extensions:
+        gltf["extensions"] = extensions
+    gltf.update({
+        "scene": 0,
+        "scenes": [{"nodes": list(range(len(nodes)))}],
+        "nodes": nodes,
+        "cameras": [camera],
+        "meshes": meshes,
+        "materials": materials,
+        "buffers": [buffers.embedded_buffer()],
+        "bufferViews": buffers.buffer_views,
+        "accessors": buffers.accessors,
+    })
+    return (json.dumps(gltf, indent=1, ensure_ascii=True) + "\n").encode("utf-8")
 
 
 def write_or_check(outputs, out_dir, check, program):

@@ -14,7 +14,6 @@ rewrites every file byte for byte.
 Usage: python3 make_hard_light.py [--out-dir DIR] [--check]
 """
 
-import json
 import math
 import os
 import sys
@@ -22,8 +21,8 @@ import sys
 sys.dont_write_bytecode = True  # no __pycache__ in scenes/
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 from gltf_builder import (  # noqa: E402  (scenes/gltf_builder.py)
-    BufferBuilder, MeshData, axis_angle_quaternion, box, generator_arguments, look_at_quaternion, quad, uv_sphere,
-    write_or_check)
+    document as gltf_document, BufferBuilder, MeshData, axis_angle_quaternion, box, generator_arguments,
+    look_at_quaternion, quad, uv_sphere, write_or_check)
 
 GENERATOR = "tessera scenes/hard-light/make_hard_light.py"
 COPYRIGHT = "tessera contributors, Apache License 2.0"
@@ -55,20 +54,8 @@ def mesh_of(buffers, data, name, material_index):
 
 def document(buffers, meshes, materials, nodes, camera):
     extensions = sorted({e for m in materials for e in m.get("extensions", {})})
-    gltf = {
-        "asset": {"version": "2.0", "generator": GENERATOR, "copyright": COPYRIGHT},
-        "extensionsUsed": extensions,
-        "scene": 0,
-        "scenes": [{"nodes": list(range(len(nodes)))}],
-        "nodes": nodes,
-        "cameras": [camera],
-        "meshes": meshes,
-        "materials": materials,
-        "buffers": [buffers.embedded_buffer()],
-        "bufferViews": buffers.buffer_views,
-        "accessors": buffers.accessors,
-    }
-    return (json.dumps(gltf, indent=1, ensure_ascii=True) + "\n").encode("utf-8")
+    return gltf_document(buffers, meshes, materials, nodes, camera, {"generator": GENERATOR, "copyright": COPYRIGHT},
+                         extensions)
 
 
 def camera_node(eye, target, yfov):

@@ -17,14 +17,14 @@ byte for byte.
 Usage: python3 make_many_lights.py [--out-dir DIR] [--check]
 """
 
-import json
 import os
 import sys
 
 sys.dont_write_bytecode = True  # no __pycache__ in scenes/
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 from gltf_builder import (  # noqa: E402  (scenes/gltf_builder.py)
-    BufferBuilder, MeshData, axis_angle_quaternion, box, generator_arguments, look_at_quaternion, quad, write_or_check)
+    document as gltf_document, BufferBuilder, MeshData, axis_angle_quaternion, box, generator_arguments,
+    look_at_quaternion, quad, write_or_check)
 
 GENERATOR = "tessera scenes/many-lights/make_many_lights.py"
 COPYRIGHT = "tessera contributors, Apache License 2.0"
@@ -40,23 +40,8 @@ def material(name, colour, roughness=0.8):
 
 
 def document(buffers, meshes, materials, nodes, lights, camera, extensions_used=("KHR_lights_punctual",)):
-    gltf = {
-        "asset": {"version": "2.0", "generator": GENERATOR, "copyright": COPYRIGHT},
-        "extensionsUsed": list(extensions_used),
-        "extensions": {"KHR_lights_punctual": {"lights": lights}} if lights else None,
-        "scene": 0,
-        "scenes": [{"nodes": list(range(len(nodes)))}],
-        "nodes": nodes,
-        "cameras": [camera],
-        "meshes": meshes,
-        "materials": materials,
-        "buffers": [buffers.embedded_buffer()],
-        "bufferViews": buffers.buffer_views,
-        "accessors": buffers.accessors,
-    }
-    if gltf["extensions"] is None:
-        del gltf["extensions"]
-    return (json.dumps(gltf, indent=1, ensure_ascii=True) + "\n").encode("utf-8")
+    return gltf_document(buffers, meshes, materials, nodes, camera, {"generator": GENERATOR, "copyright": COPYRIGHT},
+                         extensions_used, {"KHR_lights_punctual": {"lights": lights}} if lights else None)
 
 
 def mesh_of(buffers, data, name, material_index):
