@@ -13,6 +13,6 @@ GuidingUse parse_guiding_use(const std::string& name) {
   return parse_enum<GuidingUse>(guiding_use_names(), name, "guiding use");
 }
 
-bool guiding_used(GuidingUse use, const SceneDescription&) { return use == GuidingUse::On; }
+bool guiding_used(GuidingUse use) { return use == GuidingUse::On; }
 
 }  // namespace tessera

@@ -5,8 +5,6 @@
 #include <string>
 #include <vector>
 
-#include "renderer/description/scene.h"
-
 namespace tessera {
 
 enum class GuidingUse : std::uint8_t { Auto, On, Off };
@@ -15,8 +13,7 @@ GuidingUse parse_guiding_use(const std::string& name);  // throws std::invalid_a
 
 // Auto does not guide: on every scene measured (docs/materials-and-lights.md#path-guiding:
 // a caustic under a glass ball, a candle in thick glass, GlassVaseFlowers, the shared
-// CornellBox) guiding took longer to equal noise than BSDF and light sampling alone. The
-// scene is passed for the rule that will decide once a scene is measured to gain.
-bool guiding_used(GuidingUse use, const SceneDescription& scene);
+// CornellBox) guiding took longer to equal noise than BSDF and light sampling alone.
+bool guiding_used(GuidingUse use);
 
 }  // namespace tessera

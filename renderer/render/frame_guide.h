@@ -18,11 +18,12 @@ namespace tessera {
 class FrameGuide {
  public:
   FrameGuide(const RenderScene& scene, const RenderCamera& camera, const RenderSettings& settings);
+  ~FrameGuide();
   PathGuide* guide() const { return guide_.get(); }  // null: the frame is not guided
   bool learns_from(SampleWave wave) const { return guide_ && wave.end <= learn_end_; }
   // `wave` of the whole frame traced for the guide alone, no film: what a crop, a resumed
   // render and a pixel traced alone do to learn what the whole frame's render learns.
-  void learn_alone(SampleWave wave) const;
+  void learn_alone(SampleWave wave);
   // After a wave it learnt from: the ranks' records added together (when they shared the
   // wave's tiles: `ranks`), the round finished.
   void finish_round(SampleWave wave, RankGroup* ranks);
@@ -32,6 +33,8 @@ class FrameGuide {
   const RenderCamera& camera_;
   const RenderSettings& settings_;
   std::unique_ptr<PathGuide> guide_;
+  struct WholeFrame;  // what learn_alone traces with, built at its first call
+  std::unique_ptr<WholeFrame> whole_;
   int learn_end_ = 0;  // it learns from the waves that end at or before this sample
 };
 
