@@ -29,6 +29,11 @@ DenoiseInput demodulated_colour(const DenoiseInput& in, const Planes& factor) {
     for (std::size_t i = 0; i < n; ++i)
       for (int k = 0; k < 3; ++k) (*dst)[3 * i + k] = (*src)[3 * i + k] / factor.at(k, i);  // NaN stays NaN: missing
   }
+  if (!in.variance.empty()) {  // of the colour divided by a constant: divided by its square
+    out.variance.resize(in.variance.size());
+    for (std::size_t i = 0; i < n; ++i)
+      for (int k = 0; k < 3; ++k) out.variance[3 * i + k] = in.variance[3 * i + k] / (factor.at(k, i) * factor.at(k, i));
+  }
   return out;
 }
 

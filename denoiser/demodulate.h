@@ -20,7 +20,8 @@ Planes demodulation_factor(const DenoiseInput& in, float epsilon);
 // The same from features whose first 3 channels are the albedo (the prefiltered features).
 Planes demodulation_factor(const Planes& features, float epsilon);
 
-// The colour halves (and sample counts) of `in` divided by the factor, every other field empty.
+// The colour halves and variances (and sample counts) of `in` divided by the factor (the
+// variances by its square), every other field empty.
 DenoiseInput demodulated_colour(const DenoiseInput& in, const Planes& factor);
 
 // Halves prepared from demodulated colour, back in colour space: colour times the factor,

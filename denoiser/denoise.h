@@ -16,8 +16,9 @@
 //
 // Before all that, fireflies are taken out of each half buffer (denoiser/outliers.h, after
 // Cycles' denoiser): a pixel brighter than twice the 75th percentile of its 5x5 neighbourhood
-// that the other half does not confirm is scaled down to that reference for the weights and
-// is data for no window. This is a bias: the energy of a removed firefly is not in the denoised
+// that the other half does not confirm, or (given each pixel's variance) whose mean lies
+// within 3 standard deviations of that reference, is scaled down to that reference for the
+// weights and is data for no window. This is a bias: the energy of a removed firefly is not in the denoised
 // colour (the caller's noisy beauty keeps it) unless the selection keeps the noisy colour there
 // (denoiser/selection.cpp, offered()); a firefly 25x its reference is not kept even then (the
 // other half stands for the noisy colour: kImplausibleExcess in denoiser/outliers.h). Each
@@ -47,6 +48,10 @@ struct DenoiseInput {
   // Optional per-pixel sample count (adaptive sampling gives pixels different counts): the
   // even half holds ceil(n/2) samples, the odd half floor(n/2). Empty: equal halves.
   std::vector<float> samples;
+  // Optional, 3 per pixel: the variance of each pixel's mean, estimated from its samples
+  // (the renderer's variance.R/G/B). With it a pixel whose halves agree is still a firefly
+  // when its mean lies within 3 standard deviations of its neighbourhood (denoiser/outliers.h).
+  std::vector<float> variance;
 };
 
 struct DenoiseParams {

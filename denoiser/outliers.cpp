@@ -1,6 +1,7 @@
 #include "denoiser/outliers.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -18,8 +19,17 @@ std::vector<float> luminance(const Planes& c) {
 
 }  // namespace
 
+std::vector<float> outlier_sigma(const std::vector<float>& variance) {
+  std::vector<float> sigma(variance.size() / 3);
+  for (std::size_t i = 0; i < sigma.size(); ++i) {
+    const float v = (variance[3 * i] + variance[3 * i + 1] + variance[3 * i + 2]) / 3.0f;
+    sigma[i] = std::isfinite(v) && v > 0.0f ? std::sqrt(v) : 0.0f;
+  }
+  return sigma;
+}
+
 std::vector<std::uint8_t> detect_outliers(const Planes& self, const Planes& other, const std::vector<float>& valid,
-                                          std::vector<float>& ref) {
+                                          const std::vector<float>& sigma, std::vector<float>& ref) {
   const int w = self.width, h = self.height, r = kOutlierRadius;
   const std::vector<float> ls = luminance(self), lo = luminance(other);
   std::vector<std::uint8_t> out(self.pixels(), 0);
@@ -48,7 +58,9 @@ std::vector<std::uint8_t> detect_outliers(const Planes& self, const Planes& othe
         ref[i] = reference;
         const float confirm = lo[i];
         const bool candidate = l > reference;  // true by the count; kept for clarity
-        const bool highlight = confirm > reference && kHighlightRatio * confirm >= l;
+        bool highlight = confirm > reference && kHighlightRatio * confirm >= l;
+        // The halves' mean stands for the pixel's (equal halves up to one sample).
+        if (highlight && !sigma.empty()) highlight = 0.5f * (l + confirm) - kHighlightSigmas * sigma[i] > reference;
         out[i] = candidate && !highlight ? 1 : 0;
       }
   });

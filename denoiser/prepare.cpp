@@ -117,10 +117,10 @@ void spread_excess(Half& h, const Planes& excess, const std::vector<std::uint8_t
 // a pixel confirmed only by the other half's outlier is one too. Then each outlier is scaled
 // down to its reference luminance and stops being data, and what it loses is given back to
 // the valid pixels nearby, in both halves.
-void remove_outliers(Halves& halves) {
+void remove_outliers(Halves& halves, const std::vector<float>& sigma) {
   std::vector<float> ref[2];
   for (int k = 0; k < 2; ++k)
-    halves.h[k].outlier = detect_outliers(halves.h[k].color, halves.h[1 - k].color, halves.h[k].valid, ref[k]);
+    halves.h[k].outlier = detect_outliers(halves.h[k].color, halves.h[1 - k].color, halves.h[k].valid, sigma, ref[k]);
   const std::size_t n = halves.h[0].valid.size();
   for (std::size_t i = 0; i < n; ++i)
     for (int k = 0; k < 2; ++k)
@@ -164,6 +164,7 @@ void validate(const DenoiseInput& in, const DenoiseParams& p) {
   check_size(in.normal_odd, 3 * n, "normal_odd", true);
   check_size(in.depth, n, "depth", true);
   check_size(in.samples, n, "samples", true);
+  check_size(in.variance, 3 * n, "variance", true);
   const bool any_half = !in.albedo_even.empty() || !in.albedo_odd.empty() || !in.normal_even.empty() || !in.normal_odd.empty();
   const bool all_halves = !in.albedo_even.empty() && !in.albedo_odd.empty() && !in.normal_even.empty() && !in.normal_odd.empty();
   if (any_half && !all_halves)
@@ -198,7 +199,7 @@ Halves prepare_halves(const DenoiseInput& in, const DenoiseParams& p) {
   }
   fill_missing(out.h[0], out.h[1]);
   fill_missing(out.h[1], out.h[0]);
-  remove_outliers(out);
+  remove_outliers(out, outlier_sigma(in.variance));
   Planes s2_raw;
   const Planes s2 = sample_variance(out.h[0], out.h[1], p.variance_radius, false, &s2_raw);
   const Planes s2_log = sample_variance(out.h[0], out.h[1], p.variance_radius, true);

@@ -31,6 +31,7 @@ inline const std::vector<ExrLayer>& exr_layers() {
       {&FrameImage::albedo_odd, {"odd.Albedo.R", "odd.Albedo.G", "odd.Albedo.B"}},
       {&FrameImage::normal_even, {"even.N.X", "even.N.Y", "even.N.Z"}},
       {&FrameImage::normal_odd, {"odd.N.X", "odd.N.Y", "odd.N.Z"}},
+      {&FrameImage::rgb_variance, {"variance.R", "variance.G", "variance.B"}},
   };
   return layers;
 }

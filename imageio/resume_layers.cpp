@@ -25,7 +25,8 @@ namespace {
 const char* const kRgb[3] = {"R", "G", "B"};
 const char* const kXyz[3] = {"X", "Y", "Z"};
 
-// `prefix` "tessera.sum." for the radiance sums, "tessera.odd." for the odd half's.
+// `prefix` "tessera.sum." for the radiance sums, "tessera.odd." for the odd half's,
+// "tessera.sq." for the squares'.
 std::string sum_channel(const std::string& prefix, int c, bool hi) {
   return prefix + kRgb[c] + (hi ? ".hi" : ".lo");
 }
@@ -78,6 +79,7 @@ ResumeLayers::ResumeLayers(const FilmState& film, std::string settings, std::str
     if (film.aovs.albedo) add_float_sums(b, film.albedo_odd, kRgb, "tessera.odd.albedo.");
     if (film.aovs.normal) add_float_sums(b, film.normal_odd, kXyz, "tessera.odd.normal.");
   }
+  if (!film.radiance_sq.empty()) add_double_sums(b, film.radiance_sq, "tessera.sq.");
   if (film.adaptive()) {
     b.adaptive = true;
     b.uints.push_back({"tessera.converged", std::vector<std::uint32_t>(film.converged.begin(), film.converged.end())});
@@ -218,6 +220,7 @@ void read_layers(Imf::InputPart& file, FilmState& film, const std::string& path)
     if (film.aovs.albedo) r.vec3s(kRgb, "tessera.odd.albedo.", &film.albedo_odd);
     if (film.aovs.normal) r.vec3s(kXyz, "tessera.odd.normal.", &film.normal_odd);
   }
+  if (!film.radiance_sq.empty()) r.doubles("tessera.sq.", &film.radiance_sq);
   std::vector<std::uint32_t> converged(film.adaptive() ? film.pixel_count() : 0);
   if (film.adaptive()) r.uints("tessera.converged", converged.data());
   r.read(file);

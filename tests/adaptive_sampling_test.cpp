@@ -126,6 +126,35 @@ TEST(FilmHalves, OnAConstantImageBothHalvesAreTheClosedForm) {
       ASSERT_NEAR((*half)[i + 2], 1.0f, 1e-6f);
   }
   EXPECT_EQ(img.pixel_samples, std::vector<std::uint32_t>(16 * 16, 7));
+  ASSERT_EQ(img.rgb_variance.size(), img.rgb.size());
+  for (float v : img.rgb_variance) ASSERT_EQ(v, 0.0f);  // every sample the same
+}
+
+// Each pixel's variance of its mean, s^2 / n, from sums the tiles add wave by wave: samples
+// 1, 2, 3, 4, 10 (mean 4, s^2 = (9 + 4 + 1 + 0 + 36) / 4 = 12.5, over 5: 2.5) in R, their
+// doubles in G, none varying in B; a pixel of one sample has none (0).
+TEST(FilmHalves, EachPixelsVarianceIsItsSamplesOverTheirCount) {
+  Film film(2, 1, AovSelection{false, false, false, true});
+  const double values[] = {1, 2, 3, 4, 10};
+  PixelSums first, second;
+  for (int s = 0; s < 5; ++s) {
+    PixelSums& p = s < 2 ? first : second;
+    const glm::dvec3 x(values[s], 2 * values[s], 7.0);
+    ++p.samples, p.radiance += x, p.radiance_sq += x * x;
+    if (s % 2 == 1) p.radiance_odd += x;
+  }
+  film.add(0, 0, first);
+  film.add(0, 0, second);
+  PixelSums one;
+  one.samples = 1, one.radiance = one.radiance_sq = glm::dvec3(3.0);
+  film.add(1, 0, one);
+  const FrameImage img = film.resolve();
+  ASSERT_EQ(img.rgb_variance.size(), 6u);
+  EXPECT_FLOAT_EQ(img.rgb_variance[0], 2.5f);
+  EXPECT_FLOAT_EQ(img.rgb_variance[1], 10.0f);
+  EXPECT_EQ(img.rgb_variance[2], 0.0f);
+  for (int c = 3; c < 6; ++c) EXPECT_EQ(img.rgb_variance[c], 0.0f);
+  EXPECT_TRUE(Film(2, 1, AovSelection{}).resolve().rgb_variance.empty());  // only with the halves
 }
 
 // --- the estimator, on hand-made numbers ------------------------------------------------

@@ -485,15 +485,95 @@ TEST(DenoiserOutliers, ALegitimateHighlightIsKeptAFireflyIsNot) {
   const std::vector<float> valid(81, 1.0f);
   std::vector<float> ref;
   for (int c = 0; c < 3; ++c) a.at(c, 40) = b.at(c, 40) = 50.0f;
-  EXPECT_EQ(denoiser::detect_outliers(a, b, valid, ref)[40], 0);
+  EXPECT_EQ(denoiser::detect_outliers(a, b, valid, {}, ref)[40], 0);
   EXPECT_EQ(ref[40], 2.0f);
   for (int c = 0; c < 3; ++c) b.at(c, 40) = 1.0f;
-  const std::vector<std::uint8_t> o = denoiser::detect_outliers(a, b, valid, ref);
+  const std::vector<std::uint8_t> o = denoiser::detect_outliers(a, b, valid, {}, ref);
   for (int i = 0; i < 81; ++i) EXPECT_EQ(o[i], i == 40 ? 1 : 0) << i;
   // Confirmed only by a value below a quarter of it: still a firefly (a bright pixel with a
   // firefly on top in one half).
   for (int c = 0; c < 3; ++c) b.at(c, 40) = 10.0f;
-  EXPECT_EQ(denoiser::detect_outliers(a, b, valid, ref)[40], 1);
+  EXPECT_EQ(denoiser::detect_outliers(a, b, valid, {}, ref)[40], 1);
+}
+
+TEST(DenoiserOutliers, APixelsVarianceTellsTwoFirefliesFromAGlint) {
+  // A pixel of 16 samples, 8 a half, at level 1 in a neighbourhood at 1 (reference 2): two
+  // fireflies of 73, one in each half, make both halves (7 + 73) / 8 = 10, which confirm each
+  // other. Its samples' variance: 14 at 1 and 2 at 73 about the mean 10, (14 * 81 + 2 * 63^2)
+  // / 15 = 604.8, so its mean's variance is 604.8 / 16 = 37.8 (sigma 6.15) and 10 - 3 sigma
+  // < 2: a firefly in both halves. A glint that every sample sees at 10 has no variance: its
+  // mean is surely above the reference, a highlight.
+  denoiser::Planes a(9, 9, 3, 1.0f), b(9, 9, 3, 1.0f);
+  const std::vector<float> valid(81, 1.0f);
+  for (int c = 0; c < 3; ++c) a.at(c, 40) = b.at(c, 40) = 10.0f;
+  std::vector<float> variance(3 * 81, 0.0f), ref;
+  for (int c = 0; c < 3; ++c) variance[3 * 40 + c] = 37.8f;
+  const std::vector<float> sigma = denoiser::outlier_sigma(variance);
+  EXPECT_NEAR(sigma[40], std::sqrt(37.8f), 1e-5f);
+  EXPECT_EQ(denoiser::detect_outliers(a, b, valid, sigma, ref)[40], 1);
+  EXPECT_EQ(denoiser::detect_outliers(b, a, valid, sigma, ref)[40], 1);
+  EXPECT_EQ(ref[40], 2.0f);
+  EXPECT_EQ(denoiser::detect_outliers(a, b, valid, {}, ref)[40], 0);  // without the variance: confirmed
+  // The threshold itself: a highlight exactly when 10 - 3 sigma > 2, sigma < 8 / 3.
+  for (float s : {2.6f, 2.7f}) {
+    for (int c = 0; c < 3; ++c) variance[3 * 40 + c] = s * s;
+    EXPECT_EQ(denoiser::detect_outliers(a, b, valid, denoiser::outlier_sigma(variance), ref)[40], s < 8.0f / 3.0f ? 0 : 1) << s;
+  }
+  for (int c = 0; c < 3; ++c) variance[3 * 40 + c] = 0.0f;
+  EXPECT_EQ(denoiser::detect_outliers(a, b, valid, denoiser::outlier_sigma(variance), ref)[40], 0);
+  // sigma averages the channels' variances (Cycles' reading), and knows nothing where they
+  // are not finite.
+  EXPECT_NEAR(denoiser::outlier_sigma({1.0f, 4.0f, 7.0f})[0], 2.0f, 1e-6f);
+  EXPECT_EQ(denoiser::outlier_sigma({NAN, 1.0f, 1.0f})[0], 0.0f);
+}
+
+TEST(Denoiser, FirefliesInBothHalvesGoWithTheVariance) {
+  // A smooth noisy image at level ~0.5 whose samples are 16 a pixel; at five pixels both halves
+  // caught a firefly (7 samples at the level and one at 100 each: both halves 12.9). Given
+  // each pixel's variance (the smooth pixels' from their noise, the fireflies' from their 16
+  // samples), no firefly is left: every pixel of the denoised frame stays within 1.5 times its
+  // brightest neighbour; the frame's light stays within 20% of what the fireflies added to the
+  // beauty, as with one half's fireflies. Without the variance they pass as highlights.
+  Scene s = gradient_scene(0.05f);
+  s.width = s.height = 128;
+  DenoiseInput in = make_input(s);
+  const int n = s.width * s.height, w = s.width;
+  const float per_half_var = 0.05f * 0.05f;  // a half's mean; the pixel's mean has half of it
+  in.variance.assign(3 * static_cast<std::size_t>(n), 0.5f * per_half_var);
+  const DenoiseInput clean = in;
+  const int spots[][2] = {{30, 30}, {62, 41}, {44, 70}, {90, 90}, {100, 20}};
+  double injected = 0.0;
+  for (const auto& p : spots) {
+    const std::size_t i = static_cast<std::size_t>(p[1]) * w + p[0];
+    for (int k = 0; k < 3; ++k) {
+      const float level = s.color(p[0], p[1])[k];
+      const float half = (7.0f * level + 100.0f) / 8.0f;
+      injected += (half - 0.5 * (clean.color_even[3 * i + k] + clean.color_odd[3 * i + k]));
+      in.color_even[3 * i + k] = in.color_odd[3 * i + k] = half;
+      // 14 samples at the level and 2 at 100 about their mean, over 15, over 16.
+      const float mean = (14.0f * level + 200.0f) / 16.0f;
+      in.variance[3 * i + k] = (14.0f * (level - mean) * (level - mean) + 2.0f * (100.0f - mean) * (100.0f - mean)) / 15.0f / 16.0f;
+    }
+  }
+  const DenoiseResult a = denoise(clean, {}), b = denoise(in, {});
+  for (const auto& p : spots) EXPECT_EQ(b.outliers[p[1] * w + p[0]] & 3, 3) << p[0] << " " << p[1];
+  double added = 0.0;
+  for (std::size_t i = 0; i < b.rgb.size(); ++i) added += b.rgb[i] - a.rgb[i];
+  EXPECT_GT(added, 0.8 * injected);
+  EXPECT_LT(added, 1.2 * injected);
+  for (int y = 1; y + 1 < s.height; ++y)
+    for (int x = 1; x + 1 < w; ++x)
+      for (int k = 0; k < 3; ++k) {
+        float neighbours = 0.0f;
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx)
+            if (dx || dy) neighbours = std::max(neighbours, b.rgb[3 * ((y + dy) * w + x + dx) + k]);
+        ASSERT_LE(b.rgb[3 * (y * w + x) + k], 1.5f * neighbours) << x << " " << y << " " << k;
+      }
+  DenoiseInput unknown = in;
+  unknown.variance.clear();
+  const DenoiseResult c = denoise(unknown, {});
+  for (const auto& p : spots) EXPECT_EQ(c.outliers[p[1] * w + p[0]], 0) << p[0] << " " << p[1];
 }
 
 TEST(Denoiser, FirefliesAreRemovedAndTheirLightStaysNearThem) {

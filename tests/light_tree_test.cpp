@@ -88,7 +88,9 @@ TEST(LightTree, EverySpotThatReachesAPointHasAProbabilityThere) {
           ++reached;
         }
         const LightTree::Choice c = tree.sample(p, n, float(i) / lights.size());
-        if (c.pmf > 0.0f) EXPECT_EQ(c.pmf, tree.pmf(p, n, c.light));
+        if (c.pmf > 0.0f) {
+          EXPECT_EQ(c.pmf, tree.pmf(p, n, c.light));
+        }
       }
       EXPECT_LE(sum, 1.0 + 1e-5);
     }

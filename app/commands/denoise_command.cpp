@@ -19,7 +19,7 @@ void add_denoise_command(CLI::App& app, DenoiseOptions& o) {
       "denoise",
       "Denoise an EXR that tessera rendered: feature-guided regression (NFOR) on its half buffers\n"
       "(even.R/G/B, odd.R/G/B), guided by Albedo.R/G/B and N.X/Y/Z (and Z, even.Albedo.*, odd.Albedo.*,\n"
-      "even.N.*, odd.N.*, spp when present).");
+      "even.N.*, odd.N.*, variance.R/G/B, spp when present).");
   cmd->add_option("input", o.input, "The rendered EXR")->required();
   cmd->add_option("-o,--output", o.output,
                   "Output EXR: R,G,B,A denoised, noisy.R/G/B the input's beauty, every other channel (not the resume layers) and "

@@ -47,7 +47,7 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
                   "Extra EXR layers: albedo (Albedo.RGB), normal (N.XYZ, world space), depth (Z), "
                   "cost (cost.time: CPU seconds spent on the pixel's tile), halves (even.RGB and odd.RGB: "
                   "the means of the even- and odd-numbered samples, also even/odd.Albedo.RGB and even/odd.N.XYZ "
-                  "with albedo and normal; spp: each pixel's sample count)")
+                  "with albedo and normal; variance.RGB: the variance of each pixel's mean; spp: each pixel's sample count)")
       ->delimiter(',')
       ->check(CLI::IsMember({"albedo", "normal", "depth", "cost", "halves"}))
       ->group("Output");

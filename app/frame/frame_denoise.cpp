@@ -41,6 +41,7 @@ DenoiseInput denoise_input(const FrameImage& frame) {
   }
   in.depth = frame.depth;
   in.samples.assign(frame.pixel_samples.begin(), frame.pixel_samples.end());
+  in.variance = frame.rgb_variance;
   return in;
 }
 

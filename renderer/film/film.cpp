@@ -22,6 +22,7 @@ FilmState FilmState::empty(int width, int height, AovSelection aovs, bool adapti
     if (aovs.albedo) s.albedo_odd.assign(n, vec3(0.0f));
     if (aovs.normal) s.normal_odd.assign(n, vec3(0.0f));
   }
+  if (aovs.halves) s.radiance_sq.assign(n, glm::dvec3(0.0));
   if (adaptive) s.converged.assign(n, 0);
   return s;
 }
@@ -45,6 +46,7 @@ void Film::add(int x, int y, const PixelSums& p) {
     if (s.aovs.albedo) s.albedo_odd[i] += p.albedo_odd;
     if (s.aovs.normal) s.normal_odd[i] += p.normal_odd;
   }
+  if (!s.radiance_sq.empty()) s.radiance_sq[i] += p.radiance_sq;
 }
 
 std::uint32_t Film::min_samples() const {
@@ -101,6 +103,22 @@ void resolve_halves(const FilmState& s, FrameImage& img) {
   }
 }
 
+// The variance of each pixel's mean, s^2 / n with s^2 = (sum x^2 - n mean^2) / (n - 1).
+std::vector<float> mean_variances(const FilmState& s) {
+  const std::size_t n = s.pixel_count();
+  std::vector<float> out(3 * n, 0.0f);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double count = s.samples[i];
+    if (count < 2.0) continue;
+    for (int c = 0; c < 3; ++c) {
+      const double mean = s.radiance[i][c] / count;
+      const double spread = std::max(0.0, s.radiance_sq[i][c] - count * mean * mean);  // >= 0 but for rounding
+      out[3 * i + c] = static_cast<float>(spread / ((count - 1.0) * count));
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 FrameImage Film::resolve() const {
@@ -122,7 +140,7 @@ FrameImage Film::resolve() const {
     for (std::size_t i = 0; i < s.pixel_count(); ++i)
       img.alpha[i] = s.samples[i] ? static_cast<float>(static_cast<double>(s.hits[i]) / s.samples[i]) : 0.0f;
   }
-  if (s.aovs.halves) resolve_halves(s, img);
+  if (s.aovs.halves) resolve_halves(s, img), img.rgb_variance = mean_variances(s);
   if (s.aovs.halves || s.adaptive()) img.pixel_samples = s.samples;
   return img;
 }

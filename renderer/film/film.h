@@ -14,7 +14,8 @@ namespace tessera {
 
 struct AovSelection {
   bool albedo = false, normal = false, depth = false;
-  bool halves = false;  // means of the even- and odd-numbered samples, and each pixel's count
+  // Means of the even- and odd-numbered samples, each pixel's count and its variance.
+  bool halves = false;
   // --film-transparent: alpha is the fraction of camera samples that hit something, and a
   // camera ray that misses adds no background (the RGB is premultiplied by that alpha).
   bool coverage = false;
@@ -46,6 +47,9 @@ struct FrameImage {
   // samples, 3 per pixel; albedo and normal ones only when those AOVs are on too.
   std::vector<float> rgb_even, rgb_odd, albedo_even, albedo_odd, normal_even, normal_odd;
   std::vector<std::uint32_t> pixel_samples;  // with halves or adaptive sampling: each pixel's count
+  // With the halves AOV, 3 per pixel: the variance of the pixel's mean, per channel, estimated
+  // from its samples (s^2 / n); 0 where it has fewer than 2.
+  std::vector<float> rgb_variance;
   std::vector<float> noisy_rgb;  // 3 per pixel, in a denoised frame: the beauty before denoising
   // Further channels written as they are, 1 float per pixel each (a denoised frame carries
   // its input's half buffers and sample counts over).
@@ -66,6 +70,9 @@ struct FilmState {
   // minus these, so a second full set of sums is never needed.
   std::vector<glm::dvec3> radiance_odd;
   std::vector<vec3> albedo_odd, normal_odd;
+  // With the halves AOV: the sums of each sample's squared radiance, per channel (each
+  // pixel's variance: what the denoiser tells fireflies from highlights by).
+  std::vector<glm::dvec3> radiance_sq;
   // Adaptive sampling only: 1 where the last convergence check stopped the pixel, and the
   // sample count of the wave after which that check ran (0: none yet). Both decide which
   // pixels the next wave renders, so a resumed film must carry them.
@@ -82,11 +89,11 @@ struct FilmState {
 // Samples still to take before every pixel is done: converged, or at `spp`.
 std::uint64_t samples_left(const FilmState& film, int spp);
 
-// What one pixel's tile adds to it: sums over `samples` consecutive samples, and the sums
-// over the odd-numbered ones among them.
+// What one pixel's tile adds to it: sums over `samples` consecutive samples (of the radiance
+// and of its square), and the sums over the odd-numbered ones among them.
 struct PixelSums {
   std::uint32_t samples = 0, hits = 0;
-  glm::dvec3 radiance{0.0}, radiance_odd{0.0};
+  glm::dvec3 radiance{0.0}, radiance_odd{0.0}, radiance_sq{0.0};
   vec3 albedo{0.0f}, albedo_odd{0.0f}, normal{0.0f}, normal_odd{0.0f};
   float depth = 0.0f;
 };

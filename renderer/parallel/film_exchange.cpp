@@ -23,6 +23,7 @@ void each_field(Film& film, std::size_t i, Visit&& visit) {
   field(film.radiance_odd);
   field(film.albedo_odd);
   field(film.normal_odd);
+  field(film.radiance_sq);
   field(film.converged);
 }
 

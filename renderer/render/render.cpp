@@ -37,6 +37,7 @@ std::uint32_t first_sample(const Film& film, int x, int y, SampleWave wave) {
 void add_sample(PixelSums& p, int s, const glm::dvec3& radiance, const FirstHit& first, float depth) {
   ++p.samples;
   p.radiance += radiance;
+  p.radiance_sq += radiance * radiance;
   if (s % 2 == 1) p.radiance_odd += radiance;
   if (!first.hit) return;
   p.albedo += first.albedo;
@@ -57,6 +58,10 @@ void add_background_samples(PixelSums& p, int begin, int end, const vec3& radian
   p.samples += n;
   p.radiance += glm::dvec3(radiance) * static_cast<double>(n);
   p.radiance_odd += glm::dvec3(radiance) * static_cast<double>(odd);
+  // The squares have up to 48 significant bits, so their sum rounds: added one by one, as
+  // add_sample adds them, for the same bits.
+  const glm::dvec3 square = glm::dvec3(radiance) * glm::dvec3(radiance);
+  for (int k = 0; k < n; ++k) p.radiance_sq += square;
 }
 
 // The samples [first_sample, wave.end) of every pixel of one tile.
