@@ -45,8 +45,15 @@ GltfBsdf::GltfBsdf(const ShadingPoint& sp, const vec3& wo, float eta, const Fram
   orient_lobes(sp, frame, wo);
   compensate(wo);
   // Selection probabilities: each lobe's share of the reflected energy, estimated at the
-  // macro normal. Every lobe that can be non-zero keeps a non-zero probability.
-  const vec3 fo = reflectance_o_;
+  // macro normal. Every lobe that can be non-zero keeps a non-zero probability. A smooth
+  // refracting interface reflects Fresnel's share exactly: the albedo tables' 32 cosines
+  // smear its steep rise inside glass towards the critical angle, where a lobe chosen by the
+  // smeared share weighed 0.2 to 2.1 (a variance of 0.12-0.2 per crossing, against 0.003-0.01),
+  // and under total internal reflection its transmission keeps a floor of 0.001, not 0.05
+  // (the 5% of samples it wasted there were a variance of 0.05 per reflection).
+  const bool smooth_interface = refracts_ && ggx_.alpha_x <= kMinAlpha && ggx_.alpha_y <= kMinAlpha;
+  const vec3 fo = smooth_interface ? refracting_fresnel(wo.z) : reflectance_o_;
+  const float transmission_floor = smooth_interface ? 0.001f : 0.05f;
   const float dielectric = 1.0f - metallic_;
   const float tint = fmax_inline(luminance(base_), 1e-3f);
   sheen_scaling_o_ = sheen_scaling(wo);
@@ -62,7 +69,7 @@ GltfBsdf::GltfBsdf(const ShadingPoint& sp, const vec3& wo, float eta, const Fram
   const float w_specular = layered(metallic_ * max3(metal_fresnel(wo.z) * metal_scale_) * e_o_ + dielectric * mean3(fo));
   const float w_multiscatter =
       layered(metallic_ * (1.0f - e_o_) * max3(multiscatter_color_) * kPi * (1.0f - base_albedo_.albedo_average));
-  const float w_transmission = layered(dielectric * transmission_ * fmax_inline(1.0f - mean3(fo), 0.05f) * tint);
+  const float w_transmission = layered(dielectric * transmission_ * fmax_inline(1.0f - mean3(fo), transmission_floor) * tint);
   const float w_sheen = (sheen_max_ > 0.0f ? sheen_max_ * sheen_albedo(wo.z, sheen_.alpha) : 0.0f) * coat_scale_;
   const float w_clearcoat = 1.0f - coat_scale_;  // the coat's compensated reflectance
   const float total = w_diffuse + w_diffuse_transmission + w_specular + w_multiscatter + w_transmission +
