@@ -96,6 +96,8 @@ const Sample kSamples[] = {
     {"CornellBox/glTF/cornellBox.gltf", 16720, 16732, 9, 10, 1, {-5.05, -5.05, -5.05}, {5.05, 5.05, 5}},
     {"DamagedHelmet/glTF-Binary/DamagedHelmet.glb", 15452, 15452, 1, 1, 0, {-0.9474586, -0.9009739, -1.187155}, {0.9424954, 0.900995, 0.8128451}},
     {"EmissiveStrengthTest/glTF-Binary/EmissiveStrengthTest.glb", 90, 90, 6, 6, 0, {-8.002613, -6.001067, -2}, {8.001114, 4.009398, 1.998933}},
+    {"GlassBrokenWindow/glTF-Binary/GlassBrokenWindow.glb", 987, 987, 3, 3, 0, {-0.2520595, 0.0001517591, -0.01841372}, {0.2559404, 0.5166226, 0.01967429}},
+    {"GlassVaseFlowers/glTF-Binary/GlassVaseFlowers.glb", 10218, 14036, 3, 4, 0, {-0.05351734, 0, -0.06829223}, {0.1637571, 0.2032194, 0.07420088}},
     {"InterpolationTest/glTF-Binary/InterpolationTest.glb", 110, 110, 10, 10, 0, {-4.311399, -2.159462, -1}, {4.340119, 7.665226, 1.008945}},
     {"MeshPrimitiveModes/glTF/MeshPrimitiveModes.gltf", 16, 16, 3, 3, 0, {-2.866, -4, 0}, {2.866, -2, 0}},
     {"MetalRoughSpheresNoTextures/glTF-Binary/MetalRoughSpheresNoTextures.glb", 1040409, 1040409, 102, 102, 0, {-0.0009243164, -0.001010498, -0.003349959}, {0.006476563, 0.006494141, 0.0003499593}},
@@ -113,6 +115,7 @@ const Sample kSamples[] = {
     {"TextureSettingsTest/glTF-Binary/TextureSettingsTest.glb", 72, 72, 10, 10, 0, {-5.161674, -5.618556, -0.1500004}, {5.161674, 4.453537, 0.1000003}},
     {"TextureTransformTest/glTF/TextureTransformTest.gltf", 18, 24, 9, 12, 0, {-1.6, -1.141267, 0}, {1.6, 1.05, 0.01}},
     {"TransmissionRoughnessTest/glTF-Binary/TransmissionRoughnessTest.glb", 77792, 77792, 9, 9, 0, {-1, -0.45, -0.15}, {1, 0.45, 0.35}},
+    {"TransmissionTest/glTF-Binary/TransmissionTest.glb", 128775, 128775, 22, 22, 1, {-0.9763672, -0.4, -0.5210058}, {0.826243, 0.6205455, 1.368006}},
     {"TriangleWithoutIndices/glTF/TriangleWithoutIndices.gltf", 1, 1, 1, 1, 0, {0, 0, 0}, {1, 1, 0}},
     {"VertexColorTest/glTF-Binary/VertexColorTest.glb", 36, 36, 2, 2, 0, {-1, -1, -0.01274114}, {1, 1, 0.06136632}},
 };
