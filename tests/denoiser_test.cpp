@@ -496,6 +496,20 @@ TEST(DenoiserOutliers, ALegitimateHighlightIsKeptAFireflyIsNot) {
   EXPECT_EQ(denoiser::detect_outliers(a, b, valid, {}, ref)[40], 1);
 }
 
+// No pixel of an image (3 floats a pixel) is more than 1.5 times the brightest of its eight
+// neighbours, channel by channel: light spread, not a spike.
+void expect_no_spike(const std::vector<float>& rgb, int w, int h) {
+  for (int y = 1; y + 1 < h; ++y)
+    for (int x = 1; x + 1 < w; ++x)
+      for (int k = 0; k < 3; ++k) {
+        float neighbours = 0.0f;
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx)
+            if (dx || dy) neighbours = std::max(neighbours, rgb[3 * ((y + dy) * w + x + dx) + k]);
+        ASSERT_LE(rgb[3 * (y * w + x) + k], 1.5f * neighbours) << x << " " << y << " " << k;
+      }
+}
+
 TEST(DenoiserOutliers, APixelsVarianceTellsTwoFirefliesFromAGlint) {
   // A pixel of 16 samples, 8 a half, at level 1 in a neighbourhood at 1 (reference 2): two
   // fireflies of 73, one in each half, make both halves (7 + 73) / 8 = 10, which confirm each
@@ -561,15 +575,7 @@ TEST(Denoiser, FirefliesInBothHalvesGoWithTheVariance) {
   for (std::size_t i = 0; i < b.rgb.size(); ++i) added += b.rgb[i] - a.rgb[i];
   EXPECT_GT(added, 0.8 * injected);
   EXPECT_LT(added, 1.2 * injected);
-  for (int y = 1; y + 1 < s.height; ++y)
-    for (int x = 1; x + 1 < w; ++x)
-      for (int k = 0; k < 3; ++k) {
-        float neighbours = 0.0f;
-        for (int dy = -1; dy <= 1; ++dy)
-          for (int dx = -1; dx <= 1; ++dx)
-            if (dx || dy) neighbours = std::max(neighbours, b.rgb[3 * ((y + dy) * w + x + dx) + k]);
-        ASSERT_LE(b.rgb[3 * (y * w + x) + k], 1.5f * neighbours) << x << " " << y << " " << k;
-      }
+  expect_no_spike(b.rgb, w, s.height);
   DenoiseInput unknown = in;
   unknown.variance.clear();
   const DenoiseResult c = denoise(unknown, {});
@@ -639,15 +645,7 @@ TEST(Denoiser, FirefliesAreRemovedAndTheirLightStaysNearThem) {
 
   // And as brighter surroundings, not a spike: no pixel is more than 1.5 times the brightest
   // of its eight neighbours (the gradient rises by under 1% a pixel).
-  for (int y = 1; y + 1 < h; ++y)
-    for (int x = 1; x + 1 < w; ++x)
-      for (int k = 0; k < 3; ++k) {
-        float neighbours = 0.0f;
-        for (int dy = -1; dy <= 1; ++dy)
-          for (int dx = -1; dx <= 1; ++dx)
-            if (dx || dy) neighbours = std::max(neighbours, b.rgb[3 * ((y + dy) * w + x + dx) + k]);
-        ASSERT_LE(b.rgb[3 * (y * w + x) + k], 1.5f * neighbours) << x << " " << y << " " << k;
-      }
+  expect_no_spike(b.rgb, w, h);
 }
 
 TEST(Denoiser, IllConditionedWindowsStayWithinTheInputRange) {
