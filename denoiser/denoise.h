@@ -18,11 +18,11 @@
 // Cycles' denoiser): a pixel brighter than twice the 75th percentile of its 5x5 neighbourhood
 // that the other half does not confirm, or (given each pixel's variance) whose mean lies
 // within 3 standard deviations of that reference, is scaled down to that reference for the
-// weights and is data for no window. This is a bias: the energy of a removed firefly is not in the denoised
-// colour (the caller's noisy beauty keeps it) unless the selection keeps the noisy colour there
-// (denoiser/selection.cpp, offered()); a firefly 25x its reference is not kept even then (the
-// other half stands for the noisy colour: kImplausibleExcess in denoiser/outliers.h). Each
-// window's fit is bounded by the range of the colours it was fitted to, so no window
+// weights and is data for no window; the light it loses is given back to the valid pixels
+// around it, in both halves. The selection may still keep the noisy colour at such a pixel
+// (denoiser/selection.cpp, offered()), but not a firefly 25x its reference (the other half
+// stands for the noisy colour there: kImplausibleExcess in denoiser/outliers.h).
+// Each window's fit is bounded by the range of the colours it was fitted to, so no window
 // extrapolates.
 //
 // A plain image-processing library: Eigen, TBB and the standard library only.

@@ -48,7 +48,7 @@ GltfBsdf::GltfBsdf(const ShadingPoint& sp, const vec3& wo, float eta, const Fram
   // macro normal. Every lobe that can be non-zero keeps a non-zero probability. A smooth
   // refracting interface reflects Fresnel's share exactly: the albedo tables' 32 cosines
   // smear its steep rise inside glass towards the critical angle, where a lobe chosen by the
-  // smeared share weighed 0.2 to 2.1 (a variance of 0.12-0.2 per crossing, against 0.003-0.01),
+  // smeared share weighed 0.2 to 3.8 (a variance of 0.12-0.2 per crossing, against 0.003-0.01),
   // and under total internal reflection its transmission keeps a floor of 0.001, not 0.05
   // (the 5% of samples it wasted there were a variance of 0.05 per reflection).
   const bool smooth_interface = refracts_ && ggx_.alpha_x <= kMinAlpha && ggx_.alpha_y <= kMinAlpha;
