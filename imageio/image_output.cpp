@@ -88,8 +88,10 @@ std::vector<ChannelData> exr_channels(const FrameImage& img) {
 }
 
 // A colour channel (R, G, B, A, or a layer's) may be stored as half with --half; depth,
-// normals, counts and times keep 32-bit floats, which half would round (Z to 3 digits).
+// normals, counts, times and variances keep 32-bit floats, which half would round (Z to 3
+// digits) or overflow (a firefly's variance beyond 65504).
 bool is_colour_channel(const std::string& name) {
+  if (name.rfind("variance.", 0) == 0) return false;
   const std::string last = name.substr(name.rfind('.') + 1);
   return last == "R" || last == "G" || last == "B" || last == "A";
 }
