@@ -53,7 +53,8 @@ void add_sample(PixelSums& p, int s, const glm::dvec3& radiance, const FirstHit&
 // Samples [begin, end) of a pixel that sees only a uniform background of this radiance (no
 // hit, no features): the sums add_sample makes, in closed form. The same bits: n copies of a
 // float's value add up in double without rounding (n < 2^29), so n times it is exact too.
-void add_background_samples(PixelSums& p, int begin, int end, const vec3& radiance) {
+// `squares`: the film keeps the squared sums (the halves AOV); otherwise they are not worked out.
+void add_background_samples(PixelSums& p, int begin, int end, const vec3& radiance, bool squares) {
   const int n = end - begin, odd = end / 2 - begin / 2;  // odd-numbered samples in [begin, end)
   p.samples += n;
   p.radiance += glm::dvec3(radiance) * static_cast<double>(n);
@@ -61,7 +62,7 @@ void add_background_samples(PixelSums& p, int begin, int end, const vec3& radian
   // The squares have up to 48 significant bits, so their sum rounds: added one by one, as
   // add_sample adds them, for the same bits.
   const glm::dvec3 square = glm::dvec3(radiance) * glm::dvec3(radiance);
-  for (int k = 0; k < n; ++k) p.radiance_sq += square;
+  for (int k = 0; squares && k < n; ++k) p.radiance_sq += square;
 }
 
 // The samples [first_sample, wave.end) of every pixel of one tile.
@@ -75,7 +76,8 @@ void render_tile(const CameraSampler& sampler, const RenderSettings& settings, c
       const int fx = x + window.x, fy = y + window.y;  // in the frame: what the samples depend on
       PixelSums sums;
       if (sampler.background_only(fx, fy)) {  // 79% of MetalRoughSpheres' samples at 640x360
-        add_background_samples(sums, begin, wave.end, sampler.background_samples(wave.end - begin, counters.path));
+        add_background_samples(sums, begin, wave.end, sampler.background_samples(wave.end - begin, counters.path),
+                               !film.state().radiance_sq.empty());
       } else {
         sampler.sample_span(fx, fy, begin, wave.end, counters.path, [&](int s, const CameraSampleResult& r) {
           if (r.valid) add_sample(sums, s, glm::dvec3(r.radiance), r.first, r.depth);
