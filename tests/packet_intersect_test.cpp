@@ -105,11 +105,11 @@ TEST(PacketIntersect, EveryHitIsTheSingleRaysWhateverSharesThePacket) {
     }
   }
   // Every kind of hit was compared: the rays' spread covers them all.
-  EXPECT_GT(misses, 3000);  // of 9216 rays: 6066 miss, 1484 of the 3150 hits on the blended quad,
-  EXPECT_GT(blended, 700);  // 504 on instances, 149 on the moving one
-  EXPECT_GT(instanced, 250);
-  EXPECT_GT(moving, 70);
-  EXPECT_GT(hits, 1500);
+  EXPECT_GT(misses, 3000);  // of 9216 rays: 5070 miss, 2957 of the 4146 hits on the blended quad
+  EXPECT_GT(blended, 2000);  // (hit wherever its alpha is above 0: which paths pass it is the
+  EXPECT_GT(instanced, 250);  // integrator's draw), 425 on instances, 70 on the moving one
+  EXPECT_GT(moving, 40);
+  EXPECT_GT(hits, 3000);
 }
 
 // Packets are traced only on a CPU where Embree's packet kernels agree with its single-ray
@@ -137,7 +137,7 @@ TEST(PacketIntersect, PacketsAreUsedOnlyWhereTheCheckFoundThemAgreeing) {
     }
     differ += packet_differences(g, rays, N, &hits);
   }
-  EXPECT_GT(hits, 1500);
+  EXPECT_GT(hits, 3000);
   EXPECT_TRUE(differ == 0 || !agree) << differ << " of " << hits << " hits differ in packets, yet the check found them agreeing";
 }
 

@@ -92,19 +92,6 @@ vec4 face_tangent(const vec3& p0, const vec3& p1, const vec3& p2, vec2 t0, vec2 
   return vec4(glm::normalize(t), glm::dot(glm::cross(n, t), b) < 0.0f ? -1.0f : 1.0f);
 }
 
-// A random number in [0,1) for stochastic (BLEND) opacity that depends only on the ray and
-// the triangle, so a render stays the same for any thread count or tile order.
-float ray_hash(const float* values, int count, std::uint32_t prim) {
-  std::uint64_t h = 0x9e3779b97f4a7c15ULL ^ prim;
-  for (int i = 0; i < count; ++i) {
-    std::uint32_t bits;
-    std::memcpy(&bits, &values[i], sizeof bits);
-    h = (h ^ bits) * 0xbf58476d1ce4e5b9ULL;
-    h ^= h >> 31;
-  }
-  return static_cast<float>(h >> 40) * 0x1.0p-24f;
-}
-
 template <typename T>
 T interpolate(const MeshArray<T>& values, const std::uint32_t* idx, float u, float v) {
   return (1.0f - u - v) * values[idx[0]] + u * values[idx[1]] + v * values[idx[2]];
@@ -372,14 +359,15 @@ struct ShadowQuery {
 };
 
 // Embree filter for rays that look for the closest hit: rejects a hit where the surface is
-// transparent (MASK below the cutoff, or BLEND with probability 1 - alpha).
+// absent (MASK below the cutoff, BLEND of alpha 0). A BLEND surface in between is hit: the
+// integrator chooses to pass it with probability 1 - alpha, with a draw of the path's sampler.
 void alpha_filter(const RTCFilterFunctionNArguments* args) {
   const auto* view = static_cast<const SceneGeometry::FilterView*>(args->geometryUserPtr);
   for (unsigned i = 0; i < args->N; ++i) {
     if (args->valid[i] == 0) continue;
     const std::uint32_t prim = RTCHitN_primID(args->hit, args->N, i);
     const float u = RTCHitN_u(args->hit, args->N, i), v = RTCHitN_v(args->hit, args->N, i);
-    if (!view->opaque_at(prim, u, v, args->ray, args->N, i)) args->valid[i] = 0;
+    if (!(view->alpha_at(prim, u, v) > 0.0f)) args->valid[i] = 0;
   }
 }
 
@@ -437,16 +425,6 @@ float SceneGeometry::FilterView::alpha_at(std::uint32_t prim, float u, float v) 
   vec4 color(1.0f);
   texture_attributes(*mesh, &mesh->indices[3 * prim], u, v, uv, color);
   return opacity.at(opacity.user, mesh->material, uv, color);
-}
-
-bool SceneGeometry::FilterView::opaque_at(std::uint32_t prim, float u, float v, RTCRayN* ray, unsigned n,
-                                          unsigned i) const {
-  const float alpha = alpha_at(prim, u, v);
-  if (alpha >= 1.0f) return true;
-  if (alpha <= 0.0f) return false;
-  const float key[6] = {RTCRayN_org_x(ray, n, i), RTCRayN_org_y(ray, n, i), RTCRayN_org_z(ray, n, i),
-                        RTCRayN_dir_x(ray, n, i), RTCRayN_dir_y(ray, n, i), RTCRayN_dir_z(ray, n, i)};
-  return ray_hash(key, 6, prim) < alpha;
 }
 
 void SceneGeometry::install_filters(RTCGeometry geom, const TriangleMesh& mesh) {

@@ -84,12 +84,13 @@ class SceneGeometry {
     bool alpha_tested;  // alpha MASK or BLEND
     bool transmissive;  // transmission > 0: thin-walled where it has no thickness
     float alpha_at(std::uint32_t prim, float u, float v) const;
-    bool opaque_at(std::uint32_t prim, float u, float v, RTCRayN* ray, unsigned n, unsigned i) const;
   };
 
   // With `opacity`, triangles whose material is alpha MASK or BLEND get Embree filter
-  // functions, so every ray (camera, bounce, shadow) sees the cut-outs the same way; those
-  // of transmissive materials get an occlusion filter, so shadow rays pass thin surfaces.
+  // functions: every ray (camera, bounce, shadow) sees the same cut-outs (MASK below the
+  // cutoff, BLEND of alpha 0); a shadow ray passes a BLEND surface weighted by 1 - alpha,
+  // where a closest-hit ray meets it (which of the paths pass is the integrator's choice).
+  // Those of transmissive materials get an occlusion filter, so shadow rays pass thin surfaces.
   // Throws std::invalid_argument when motion arrays do not have motion_steps - 1 steps.
   SceneGeometry(const SceneDescription& scene, RTCDevice device, SurfaceOpacity opacity = {});
   ~SceneGeometry();

@@ -223,6 +223,7 @@ struct PathState {
   // vertex, as far away as the whole straight line.
   float passed = 0.0f;
   int passes = 0;
+  int blend_passes = 0;  // BLEND surfaces passed (pass_blend), bounded like the straight passes
   // The wavelength (nm) this path carries since its first dispersive surface; 0 = none yet
   // (spectrum.h: the throughput then holds the wavelength's RGB weight).
   float wavelength = 0.0f;
@@ -233,6 +234,44 @@ struct PathState {
   bool prefetched = false;  // the hit's textures were prefetched with others' (a packet, a group)
   GuidePath* learning = nullptr;  // what the path records for the guide, while it learns
 };
+
+// The probability that a path passes a BLEND surface of opacity alpha where it meets it (the
+// rest see the surface): (1 - alpha) / ((1 - alpha) + alpha * A), with A what the surface
+// returns of uniform light as its base colour tells (Schlick's 4% over a dielectric's base,
+// a metal's base; its emission added; kept in [0.1, 1]). So where the surface is dark and
+// the view behind it bright, most samples go where the light is, as Cycles weighs its
+// transparent closure against the surface's closures. Any choice in (0, 1) is unbiased: the
+// path is divided by the probability of what it chose.
+float blend_pass_probability(float alpha, const ShadingPoint& sp) {
+  const float base = luminance(sp.base_color);
+  const float albedo = sp.metallic * base + (1.0f - sp.metallic) * (0.04f + 0.96f * base);
+  const float seen = alpha * glm::clamp(albedo + luminance(sp.emission), 0.1f, 1.0f);
+  return (1.0f - alpha) / ((1.0f - alpha) + seen);
+}
+
+// On past a BLEND surface (chosen with probability `chance`, weighed by `weight`) as if it
+// were absent, as its cut-outs are: not a bounce, not a pass of the camera ray (features,
+// transparent background), and weighed against light sampling from the last vertex like a
+// straight pass. The choice is a draw of the path's sampler, so over a pixel's samples the
+// share that passes is stratified, where a hash of each ray was white noise. False (the path
+// ends) past kMaxPasses of them: a ray caught between coincident layers.
+bool pass_blend(PathState& st, const SurfaceHit& s, float chance, float weight, PathRecord* record) {
+  if (record) {
+    PathVertex& v = record->vertices.emplace_back();
+    v.position = s.p, v.normal = s.ng, v.material = s.material, v.throughput = st.throughput;
+    v.lobe = "alpha pass", v.pdf = chance;
+  }
+  if (++st.blend_passes > kMaxPasses) {
+    if (record) record->end = "too many alpha layers";
+    return false;
+  }
+  st.throughput *= weight;
+  st.passed += st.hit.t;
+  const vec3 side = glm::dot(st.ray.direction, s.ng) >= 0.0f ? s.ng : -s.ng;
+  st.ray = Ray{offset_ray_origin(s.p, side, s.extent), st.ray.direction, 0.0f, std::numeric_limits<float>::infinity(),
+               st.time};
+  return true;
+}
 
 // The path's vertex at st.hit (`found`: st.ray hit something): what it adds to st.radiance,
 // and st.ray made the next ray; false when the path ends there.
@@ -249,7 +288,7 @@ bool path_vertex(const RenderScene& scene, const PathTracerParams& params, PathS
   const bool light_sampling = !scene.area_lights->empty() && mode != LightSampling::BsdfOnly;
   const bool environment_sampling = scene.environment.has_image() && mode != LightSampling::BsdfOnly;
   auto record_features = [&](const ShadingPoint& sp, const SurfaceHit& s) {
-    if (bounce == 0 && passes == 0) first = {true, sp.base_color, s.ns, hit.t};
+    if (bounce == 0 && passes == 0) first = {true, sp.base_color, s.ns, passed + hit.t};
     else if (features_pending) first.albedo = feature_weight * sp.base_color, first.normal = s.ns;
   };
   // On along the same line past the surface just hit, as if it were absent; false at the bound.
@@ -276,6 +315,9 @@ bool path_vertex(const RenderScene& scene, const PathTracerParams& params, PathS
   SurfaceHit s = scene.geometry->surface(ray, hit);
   if (!st.prefetched) scene.materials.prefetch_textures(s);
   st.prefetched = false;
+  // A BLEND surface in part there: the draw that chooses to pass it comes first.
+  const float alpha = scene.materials.opacity(s.material, s.uv, s.color);
+  const float u_blend = alpha < 1.0f ? rng.next() : 0.0f;
   // The emitter light sampling will use: its three numbers come next in the sequence unless
   // this vertex draws a wavelength first, so then it is chosen here, and its record arrives
   // while the material is evaluated; otherwise after the wavelength. A path that ends before
@@ -294,6 +336,11 @@ bool path_vertex(const RenderScene& scene, const PathTracerParams& params, PathS
   if (light_sampling && !last && !(wavelength == 0.0f && scene.materials.material(s.material).dispersion > 0.0f))
     choose_light();
   ShadingPoint sp = scene.materials.evaluate(s);
+  if (alpha < 1.0f) {
+    const float pass = blend_pass_probability(alpha, sp);
+    if (u_blend < pass) return pass_blend(st, s, pass, (1.0f - alpha) / pass, record);
+    throughput *= alpha / (1.0f - pass);
+  }
   PathVertex* vertex = nullptr;
   if (record) {
     vertex = &record->vertices.emplace_back();
