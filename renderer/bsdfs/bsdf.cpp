@@ -82,6 +82,11 @@ GltfBsdf::GltfBsdf(const ShadingPoint& sp, const vec3& wo, float eta, const Fram
   weight_[kTransmission] = share(w_transmission);
   weight_[kSheen] = share(w_sheen);
   weight_[kClearcoat] = share(w_clearcoat);
+  if (refracts_) {  // what interface_share() needs: the two lobes' weights as lines in F
+    interface_r0_ = layered(metallic_ * max3(metal_fresnel(wo.z) * metal_scale_) * e_o_);
+    interface_kr_ = layered(dielectric);
+    interface_kt_ = layered(dielectric * transmission_ * tint);
+  }
   lambda_o_ = ggx_.lambda(wo);
   g1_o_ = 1.0f / (1.0f + lambda_o_);
   specular_pdf_scale_ = g1_o_ / (4.0f * wo.z);
@@ -328,19 +333,56 @@ float GltfBsdf::pdf(const vec3& wo, const vec3& wi) const { return pdf(wo, wi, h
 float GltfBsdf::pdf(const vec3& wo, const vec3& wi, const HalfVector& m) const {
   if (wo.z <= 0.0f || wi.z == 0.0f) return 0.0f;
   float p = 0.0f;
+  if (refracts_) {  // the interface's two lobes as sample() chooses them (interface_share)
+    p = interface_pdf(wo, wi, m);
+#pragma GCC unroll 8
+    for (int i = 0; i < kLobeCount; ++i)
+      if (weight_[i] > 0.0f && i != kSpecular && i != kTransmission) p += weight_[i] * lobe_pdf(i, wo, wi, m);
+    return p;
+  }
 #pragma GCC unroll 8
   for (int i = 0; i < kLobeCount; ++i)
     if (weight_[i] > 0.0f) p += weight_[i] * lobe_pdf(i, wo, wi, m);
   return p;
 }
 
+float GltfBsdf::interface_pdf(const vec3& wo, const vec3& wi, const HalfVector& m) const {
+  const float both = weight_[kSpecular] + weight_[kTransmission];
+  if (!(both > 0.0f)) return 0.0f;
+  if (wi.z > 0.0f) {
+    if (m.cos_oh <= 0.0f) return 0.0f;
+    return both * interface_share(m.cos_oh) * lobe_pdf(kSpecular, wo, wi, m);
+  }
+  vec3 h = wi * eta_ + wo;
+  if (glm::dot(h, h) <= 0.0f) return 0.0f;
+  h = glm::normalize(h);
+  if (h.z < 0.0f) h = -h;
+  const float cos_oh = glm::dot(wo, h);
+  if (cos_oh <= 0.0f) return 0.0f;
+  return both * (1.0f - interface_share(cos_oh)) * lobe_pdf(kTransmission, wo, wi, m);
+}
+
 bool GltfBsdf::sample(const vec3& wo, float u_lobe, const vec2& u, BsdfSample& s) const {
   if (wo.z <= 0.0f) return false;
   int lobe = 0;
-  for (float acc = weight_[0]; lobe < kLobeCount - 1 && u_lobe >= acc; acc += weight_[++lobe]) {}
+  float acc = weight_[0];
+  for (; lobe < kLobeCount - 1 && u_lobe >= acc; acc += weight_[++lobe]) {}
   if (weight_[lobe] <= 0.0f) return false;
-  s.lobe = lobe;
   vec3 wi;
+  if (refracts_ && (lobe == kSpecular || lobe == kTransmission)) {
+    // The interface: reflection or refraction at the sampled microfacet, by its own Fresnel.
+    // u_lobe's place within the two lobes' weights, as one interval, chooses.
+    const float both = weight_[kSpecular] + weight_[kTransmission];
+    const float v = fmin_inline((u_lobe - (acc - weight_[lobe])) / weight_[lobe], 0x1.fffffep-1f);
+    const float place = (lobe == kSpecular ? v * weight_[kSpecular] : weight_[kSpecular] + v * weight_[kTransmission]) / both;
+    const vec3 h = ggx_.sample_visible(wo, u);
+    lobe = place < interface_share(glm::dot(wo, h)) ? kSpecular : kTransmission;
+    if (lobe == kSpecular) wi = reflect(wo, h);
+    else if (!refract(wo, h, eta_, wi)) return false;  // total internal reflection: its share was 1
+    s.lobe = lobe;
+    return finish_sample(wo, wi, lobe, s);
+  }
+  s.lobe = lobe;
   switch (lobe) {
     case kDiffuse:
     case kSheen: wi = sample_cosine_hemisphere(u); break;
@@ -370,12 +412,28 @@ bool GltfBsdf::sample(const vec3& wo, float u_lobe, const vec2& u, BsdfSample& s
       if (!refract(wo, ggx_.sample_visible(wo, u), eta_, wi)) return false;  // total internal reflection
     }
   }
+  return finish_sample(wo, wi, lobe, s);
+}
+
+bool GltfBsdf::finish_sample(const vec3& wo, const vec3& wi, int lobe, BsdfSample& s) const {
   s.set_wi(wi);
   const bool below = lobe == kTransmission || lobe == kDiffuseTransmission;
   if (below ? s.wi.z >= 0.0f : s.wi.z <= 0.0f) return false;
   s.f = eval(wo, s.wi, s.pdf);
   s.transmitted = below;
   return s.pdf > 0.0f && std::isfinite(s.pdf);
+}
+
+// Reflection's share of a refracting interface at a microfacet whose cosine with wo is cos_oh:
+// the lobes' weights (reflection r0 + kr F, refraction kt (1 - F)) with that microfacet's
+// exact Fresnel F. Chosen by the macro normal's Fresnel, as the lobe weights are, a
+// microfacet tilted past the critical angle's edge refracted with the transmission's floor
+// probability (0.1%) and weighed up to 1000 (a firefly where light leaves glass at the critical
+// angle); chosen by its own, each sample weighs G2/G1 and the interface's scale at most.
+float GltfBsdf::interface_share(float cos_oh) const {
+  const float f = mean3(refracting_fresnel(cos_oh));
+  const float r = interface_r0_ + interface_kr_ * f, t = interface_kt_ * (1.0f - f);
+  return r + t > 0.0f ? r / (r + t) : 1.0f;
 }
 
 }  // namespace tessera

@@ -147,6 +147,10 @@ class GltfBsdf {
   vec3 coat(const vec3& wo, const vec3& wi) const;  // the clear coat's reflection
   float coat_pdf(const vec3& wo, const vec3& wi) const;
   float lobe_pdf(int lobe, const vec3& wo, const vec3& wi, const HalfVector& m) const;
+  // A refracting interface chooses reflection or refraction per sampled microfacet:
+  float interface_share(float cos_oh) const;  // reflection's share at that microfacet
+  float interface_pdf(const vec3& wo, const vec3& wi, const HalfVector& m) const;  // both lobes' pdf
+  bool finish_sample(const vec3& wo, const vec3& wi, int lobe, BsdfSample& s) const;  // f and pdf at wi
   vec3 reflection(const vec3& wo, const vec3& wi, const HalfVector& m) const;  // diffuse + specular, below the coat
   vec3 transmission(const vec3& wo, const vec3& wi) const;
   vec3 diffuse_transmission(const vec3& wo, const vec3& wi) const;
@@ -188,6 +192,9 @@ class GltfBsdf {
   float sheen_scaling_o_ = 1.0f;  // toward wo
   float coat_scale_;  // 1 - clearcoat * Fc(wo): what passes the coat, for wo
   float weight_[kLobeCount];  // lobe selection probabilities for this wo, summing to 1
+  // A refracting interface's lobe weights as lines in a microfacet's Fresnel F: reflection
+  // r0 + kr F (r0 the metal's), refraction kt (1 - F) (interface_share).
+  float interface_r0_ = 0.0f, interface_kr_ = 0.0f, interface_kt_ = 0.0f;
 };
 
 }  // namespace tessera
