@@ -315,8 +315,10 @@ bool path_vertex(const RenderScene& scene, const PathTracerParams& params, PathS
   SurfaceHit s = scene.geometry->surface(ray, hit);
   if (!st.prefetched) scene.materials.prefetch_textures(s);
   st.prefetched = false;
-  // A BLEND surface in part there: the draw that chooses to pass it comes first.
-  const float alpha = scene.materials.opacity(s.material, s.uv, s.color);
+  // A BLEND surface in part there: the draw that chooses to pass it comes first. (A MASK
+  // surface met is opaque: the filter has cut it out elsewhere.)
+  const bool blend = scene.materials.material(s.material).alpha_mode == AlphaMode::Blend;
+  const float alpha = blend ? scene.materials.opacity(s.material, s.uv, s.color) : 1.0f;
   const float u_blend = alpha < 1.0f ? rng.next() : 0.0f;
   // The emitter light sampling will use: its three numbers come next in the sequence unless
   // this vertex draws a wavelength first, so then it is chosen here, and its record arrives
