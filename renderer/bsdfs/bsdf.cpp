@@ -66,7 +66,8 @@ GltfBsdf::GltfBsdf(const ShadingPoint& sp, const vec3& wo, float eta, const Fram
   const float diffuse = dielectric * (1.0f - transmission_) * (1.0f - mean3(fo));
   const float w_diffuse = layered(diffuse * (1.0f - diffuse_transmission_) * luminance(base_));
   const float w_diffuse_transmission = layered(diffuse * diffuse_transmission_ * luminance(diffuse_transmission_color_));
-  const float w_specular = layered(metallic_ * max3(metal_fresnel(wo.z) * metal_scale_) * e_o_ + dielectric * mean3(fo));
+  const float metal_specular = metallic_ * max3(metal_fresnel(wo.z) * metal_scale_) * e_o_;
+  const float w_specular = layered(metal_specular + dielectric * mean3(fo));
   const float w_multiscatter =
       layered(metallic_ * (1.0f - e_o_) * max3(multiscatter_color_) * kPi * (1.0f - base_albedo_.albedo_average));
   const float w_transmission = layered(dielectric * transmission_ * fmax_inline(1.0f - mean3(fo), transmission_floor) * tint);
@@ -83,7 +84,7 @@ GltfBsdf::GltfBsdf(const ShadingPoint& sp, const vec3& wo, float eta, const Fram
   weight_[kSheen] = share(w_sheen);
   weight_[kClearcoat] = share(w_clearcoat);
   if (refracts_) {  // what interface_share() needs: the two lobes' weights as lines in F
-    interface_r0_ = layered(metallic_ * max3(metal_fresnel(wo.z) * metal_scale_) * e_o_);
+    interface_r0_ = layered(metal_specular);
     interface_kr_ = layered(dielectric);
     interface_kt_ = layered(dielectric * transmission_ * tint);
   }
@@ -240,10 +241,8 @@ vec3 GltfBsdf::reflection(const vec3& wo, const vec3& wi, const HalfVector& m) c
 
 vec3 GltfBsdf::transmission(const vec3& wo, const vec3& wi) const {
   if (!refracts_ || metallic_ >= 1.0f) return vec3(0.0f);  // thin: a straight pass, not evaluable
-  vec3 h = wi * eta_ + wo;
-  if (glm::dot(h, h) <= 0.0f) return vec3(0.0f);
-  h = glm::normalize(h);
-  if (h.z < 0.0f) h = -h;
+  vec3 h;
+  if (!refraction_normal(wo, wi, h)) return vec3(0.0f);
   const float cos_oh = glm::dot(wo, h), cos_ih = glm::dot(wi, h);
   if (cos_oh <= 0.0f || cos_ih >= 0.0f) return vec3(0.0f);  // back-facing microfacet
   const float denom = sqr(cos_ih + cos_oh / eta_) * std::fabs(wi.z) * wo.z;
@@ -317,15 +316,26 @@ const char* GltfBsdf::lobe_name(int lobe) {
       return wi.z > 0.0f && m.cos_oh > 0.0f ? m.d * specular_pdf_scale_ : 0.0f;
     default: {  // transmission
       if (wi.z >= 0.0f || !refracts_) return 0.0f;  // the thin pass is a delta
-      vec3 h = wi * eta_ + wo;
-      if (glm::dot(h, h) <= 0.0f) return 0.0f;
-      h = glm::normalize(h);
-      if (h.z < 0.0f) h = -h;
-      const float cos_oh = glm::dot(wo, h), cos_ih = glm::dot(wi, h);
-      if (cos_oh <= 0.0f || cos_ih >= 0.0f) return 0.0f;
-      return ggx_.visible_pdf(wo, h) * std::fabs(cos_ih) / sqr(cos_ih + cos_oh / eta_);
+      vec3 h;
+      return refraction_normal(wo, wi, h) ? transmission_pdf(wo, wi, h) : 0.0f;
     }
   }
+}
+
+// The microfacet normal (on wo's side) that refracts wo into wi; false where there is none.
+bool GltfBsdf::refraction_normal(const vec3& wo, const vec3& wi, vec3& h) const {
+  h = wi * eta_ + wo;
+  if (glm::dot(h, h) <= 0.0f) return false;
+  h = glm::normalize(h);
+  if (h.z < 0.0f) h = -h;
+  return true;
+}
+
+// The transmission lobe's pdf of wi, refracted by the microfacet h (refraction_normal).
+float GltfBsdf::transmission_pdf(const vec3& wo, const vec3& wi, const vec3& h) const {
+  const float cos_oh = glm::dot(wo, h), cos_ih = glm::dot(wi, h);
+  if (cos_oh <= 0.0f || cos_ih >= 0.0f) return 0.0f;
+  return ggx_.visible_pdf(wo, h) * std::fabs(cos_ih) / sqr(cos_ih + cos_oh / eta_);
 }
 
 float GltfBsdf::pdf(const vec3& wo, const vec3& wi) const { return pdf(wo, wi, half_vector(wo, wi)); }
@@ -353,13 +363,11 @@ float GltfBsdf::interface_pdf(const vec3& wo, const vec3& wi, const HalfVector& 
     if (m.cos_oh <= 0.0f) return 0.0f;
     return both * interface_share(m.cos_oh) * lobe_pdf(kSpecular, wo, wi, m);
   }
-  vec3 h = wi * eta_ + wo;
-  if (glm::dot(h, h) <= 0.0f) return 0.0f;
-  h = glm::normalize(h);
-  if (h.z < 0.0f) h = -h;
+  vec3 h;
+  if (!refraction_normal(wo, wi, h)) return 0.0f;
   const float cos_oh = glm::dot(wo, h);
   if (cos_oh <= 0.0f) return 0.0f;
-  return both * (1.0f - interface_share(cos_oh)) * lobe_pdf(kTransmission, wo, wi, m);
+  return both * (1.0f - interface_share(cos_oh)) * transmission_pdf(wo, wi, h);
 }
 
 bool GltfBsdf::sample(const vec3& wo, float u_lobe, const vec2& u, BsdfSample& s) const {

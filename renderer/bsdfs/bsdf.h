@@ -147,6 +147,8 @@ class GltfBsdf {
   vec3 coat(const vec3& wo, const vec3& wi) const;  // the clear coat's reflection
   float coat_pdf(const vec3& wo, const vec3& wi) const;
   float lobe_pdf(int lobe, const vec3& wo, const vec3& wi, const HalfVector& m) const;
+  bool refraction_normal(const vec3& wo, const vec3& wi, vec3& h) const;  // the microfacet refracting wo into wi
+  float transmission_pdf(const vec3& wo, const vec3& wi, const vec3& h) const;  // of wi, refracted by h
   // A refracting interface chooses reflection or refraction per sampled microfacet:
   float interface_share(float cos_oh) const;  // reflection's share at that microfacet
   float interface_pdf(const vec3& wo, const vec3& wi, const HalfVector& m) const;  // both lobes' pdf
