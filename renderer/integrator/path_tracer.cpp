@@ -233,6 +233,16 @@ struct PathState {
   HitRecord hit;  // of `ray`, once traced
   bool prefetched = false;  // the hit's textures were prefetched with others' (a packet, a group)
   GuidePath* learning = nullptr;  // what the path records for the guide, while it learns
+
+  // On along the same line past the surface s just hit, as if it were absent, counted in
+  // `count` (passes or blend_passes); false past kMaxPasses of them.
+  bool go_past(const SurfaceHit& s, int& count) {
+    if (++count > kMaxPasses) return false;
+    passed += hit.t;
+    const vec3 side = glm::dot(ray.direction, s.ng) >= 0.0f ? s.ng : -s.ng;
+    ray = Ray{offset_ray_origin(s.p, side, s.extent), ray.direction, 0.0f, std::numeric_limits<float>::infinity(), time};
+    return true;
+  }
 };
 
 // The probability that a path passes a BLEND surface of opacity alpha where it meets it (the
@@ -261,15 +271,11 @@ bool pass_blend(PathState& st, const SurfaceHit& s, float chance, float weight, 
     v.position = s.p, v.normal = s.ng, v.material = s.material, v.throughput = st.throughput;
     v.lobe = "alpha pass", v.pdf = chance;
   }
-  if (++st.blend_passes > kMaxPasses) {
+  if (!st.go_past(s, st.blend_passes)) {
     if (record) record->end = "too many alpha layers";
     return false;
   }
   st.throughput *= weight;
-  st.passed += st.hit.t;
-  const vec3 side = glm::dot(st.ray.direction, s.ng) >= 0.0f ? s.ng : -s.ng;
-  st.ray = Ray{offset_ray_origin(s.p, side, s.extent), st.ray.direction, 0.0f, std::numeric_limits<float>::infinity(),
-               st.time};
   return true;
 }
 
@@ -291,13 +297,6 @@ bool path_vertex(const RenderScene& scene, const PathTracerParams& params, PathS
     if (bounce == 0 && passes == 0) first = {true, sp.base_color, s.ns, passed + hit.t};
     else if (features_pending) first.albedo = feature_weight * sp.base_color, first.normal = s.ns;
   };
-  // On along the same line past the surface just hit, as if it were absent; false at the bound.
-  auto pass_straight = [&](const vec3& origin) {
-    if (++passes > kMaxPasses) return false;
-    passed += hit.t;
-    ray = Ray{origin, ray.direction, 0.0f, std::numeric_limits<float>::infinity(), time};
-    return true;
-  };
   if (absorption != vec3(0.0f)) throughput *= found ? glm::exp(-absorption * hit.t) : vec3(0.0f);
   if (!found) {
     const float weight = bsdf_pdf > 0.0f && environment_sampling
@@ -317,8 +316,8 @@ bool path_vertex(const RenderScene& scene, const PathTracerParams& params, PathS
   st.prefetched = false;
   // A BLEND surface in part there: the draw that chooses to pass it comes first. (A MASK
   // surface met is opaque: the filter has cut it out elsewhere.)
-  const bool blend = scene.materials.material(s.material).alpha_mode == AlphaMode::Blend;
-  const float alpha = blend ? scene.materials.opacity(s.material, s.uv, s.color) : 1.0f;
+  const Material& material = scene.materials.material(s.material);
+  const float alpha = material.alpha_mode == AlphaMode::Blend ? scene.materials.opacity(s.material, s.uv, s.color) : 1.0f;
   const float u_blend = alpha < 1.0f ? rng.next() : 0.0f;
   // The emitter light sampling will use: its three numbers come next in the sequence unless
   // this vertex draws a wavelength first, so then it is chosen here, and its record arrives
@@ -335,7 +334,7 @@ bool path_vertex(const RenderScene& scene, const PathTracerParams& params, PathS
     light = scene.area_lights->choose(u_light.z, params.emitter_pick, params.emitter_tree ? &place : nullptr);
     light_chosen = true;
   };
-  if (light_sampling && !last && !(wavelength == 0.0f && scene.materials.material(s.material).dispersion > 0.0f))
+  if (light_sampling && !last && !(wavelength == 0.0f && material.dispersion > 0.0f))
     choose_light();
   ShadingPoint sp = scene.materials.evaluate(s);
   if (alpha < 1.0f) {
@@ -394,7 +393,7 @@ bool path_vertex(const RenderScene& scene, const PathTracerParams& params, PathS
     throughput *= bsdf.straight_transmittance();
     if (vertex) vertex->lobe = "straight pass";
     if (features_pending) feature_weight *= bsdf.straight_transmittance();
-    return throughput != vec3(0.0f) && pass_straight(ctx.origin_towards(ray.direction));
+    return throughput != vec3(0.0f) && st.go_past(s, passes);
   }
   vec3 direct(0.0f);  // what light sampling adds, summed for the record only
   auto add_direct = [&](const vec3& light) {
@@ -419,9 +418,7 @@ bool path_vertex(const RenderScene& scene, const PathTracerParams& params, PathS
   if (vertex) vertex->lobe = bs.passthrough ? "straight pass" : GltfBsdf::lobe_name(bs.lobe), vertex->pdf = bs.pdf;
   throughput *= bs.f * (std::fabs(bs.wi.z) / bs.pdf);
   if (features_pending) feature_weight *= bs.f * (std::fabs(bs.wi.z) / bs.pdf);
-  if (bs.passthrough) {
-    return pass_straight(ctx.origin_towards(ray.direction));
-  }
+  if (bs.passthrough) return st.go_past(s, passes);
   const vec3 wi = frame.to_world(bs.wi);
   if ((glm::dot(wi, s.ng) > 0.0f) == bs.transmitted) {  // shading and geometry disagree
     if (record) record->end = "direction below the surface";
