@@ -35,6 +35,12 @@ run oiiotool helmet.exr --ch R=Albedo.R,G=Albedo.G,B=Albedo.B --colorconvert lin
 run oiiotool helmet.exr --ch R=N.X,G=N.Y,B=N.Z --mulc 0.5 --addc 0.5 -d uint8 -o docs/images/aov-normal.png
 run oiiotool helmet.exr --ch Z --dup --mulc 1e9 --clamp:min=0:max=1 --swap --subc 8.4 --mulc -0.7143 --clamp:min=0:max=1 --mul -d uint8 -o docs/images/aov-depth.png
 
+# --- The Python package's dataset example (docs/python.md) ---------------------------------
+run env PYTHONPATH=build/python python3 python/examples/render_dataset.py \
+    scenes/khronos/DamagedHelmet/glTF-Binary/DamagedHelmet.glb /tmp/helmet-views --views 8 --size 256 --spp 16
+run env PYTHONPATH=build/python python3 docs/python-dataset-sheet.py /tmp/helmet-views /tmp/helmet-views/sheet.exr 0 2 4 6
+run oiiotool /tmp/helmet-views/sheet.exr --resize 50% -d uint8 -o docs/images/python-dataset.png
+
 # --- Thin lens: the same box, focused by the image centre and at 0.95 m -------------------
 run tessera render scenes/cornell-box/cornell-box.gltf --width 400 --spp 128 --aperture 0.1 -o docs/images/dof-autofocus.png
 run tessera render scenes/cornell-box/cornell-box.gltf --width 400 --spp 128 --aperture 0.1 --focus-distance 0.95 -o docs/images/dof-focus-0.95.png

@@ -8,6 +8,8 @@
 #include <OpenEXR/ImfStandardAttributes.h>
 #include <OpenEXR/ImfStringAttribute.h>
 
+#include <set>
+
 #include "renderer/util/isa.h"
 
 namespace tessera {
@@ -21,6 +23,15 @@ Imath::M44f to_imath(const glm::mat4& m) {
     for (int j = 0; j < 4; ++j) out[i][j] = m[i][j];
   return out;
 }
+
+glm::mat4 from_imath(const Imath::M44f& m) {
+  glm::mat4 out;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) out[i][j] = m[i][j];
+  return out;
+}
+
+}  // namespace
 
 // Who made the file, when, from what, and for whom: the standard attributes first.
 void insert_provenance(Imf::Header& header, const FrameMetadata& m) {
@@ -38,7 +49,42 @@ void insert_provenance(Imf::Header& header, const FrameMetadata& m) {
   header.insert("tesseraIsa", Imf::StringAttribute(std::string(compiled_isa())));
 }
 
-}  // namespace
+bool is_layout_attribute(const std::string& name) {
+  static const std::set<std::string> kLayout = {"channels", "compression", "dataWindow", "displayWindow", "lineOrder",
+                                                "pixelAspectRatio", "screenWindowCenter", "screenWindowWidth", "tiles",
+                                                "type", "name", "version", "chunkCount"};
+  return kLayout.count(name) != 0;
+}
+
+std::vector<HeaderAttribute> header_attributes(const Imf::Header& header) {
+  std::vector<HeaderAttribute> out;
+  for (auto it = header.begin(); it != header.end(); ++it) {
+    const Imf::Attribute& a = it.attribute();
+    if (is_layout_attribute(it.name())) continue;
+    if (const auto* s = dynamic_cast<const Imf::StringAttribute*>(&a)) out.push_back({it.name(), s->value()});
+    else if (const auto* i = dynamic_cast<const Imf::IntAttribute*>(&a)) out.push_back({it.name(), i->value()});
+    else if (const auto* f = dynamic_cast<const Imf::FloatAttribute*>(&a)) out.push_back({it.name(), f->value()});
+    else if (const auto* d = dynamic_cast<const Imf::DoubleAttribute*>(&a)) out.push_back({it.name(), d->value()});
+    else if (const auto* m = dynamic_cast<const Imf::M44fAttribute*>(&a)) out.push_back({it.name(), from_imath(m->value())});
+  }
+  return out;
+}
+
+void insert_attributes(Imf::Header& header, const std::vector<HeaderAttribute>& attributes) {
+  for (const HeaderAttribute& a : attributes) {
+    if (const auto* s = std::get_if<std::string>(&a.value)) header.insert(a.name, Imf::StringAttribute(*s));
+    else if (const auto* i = std::get_if<int>(&a.value)) header.insert(a.name, Imf::IntAttribute(*i));
+    else if (const auto* f = std::get_if<float>(&a.value)) header.insert(a.name, Imf::FloatAttribute(*f));
+    else if (const auto* d = std::get_if<double>(&a.value)) header.insert(a.name, Imf::DoubleAttribute(*d));
+    else header.insert(a.name, Imf::M44fAttribute(to_imath(std::get<glm::mat4>(a.value))));
+  }
+}
+
+std::vector<HeaderAttribute> frame_header_attributes(const FrameMetadata& m, int samples_per_pixel) {
+  Imf::Header header;
+  insert_frame_metadata(header, m, samples_per_pixel);
+  return header_attributes(header);
+}
 
 std::string exr_cap_date(std::time_t t) {
   std::tm local{};

@@ -9,6 +9,7 @@
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfStringAttribute.h>
 
+#include "imageio/exr_header.h"
 #include "imageio/exr_layers.h"
 #include "imageio/image_output.h"
 
@@ -37,6 +38,7 @@ ExrChannels read_exr_channels(const std::string& path) {
     if (display != window && display.min == Imath::V2i(0, 0))
       out.window = {window.min.x, window.min.y, display.max.x + 1, display.max.y + 1};
     if (const auto* s = file.header().findTypedAttribute<Imf::StringAttribute>("sampler")) out.sampler = s->value();
+    out.attributes = header_attributes(file.header());
     const std::size_t n = static_cast<std::size_t>(out.width) * out.height;
     Imf::FrameBuffer fb;
     for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it) {
@@ -62,6 +64,9 @@ FrameImage frame_from_exr(ExrChannels exr) {
   FrameImage frame;
   frame.width = exr.width, frame.height = exr.height;
   std::set<std::string> used = {"A"};
+  // Coverage (--film-transparent) travels with the frame; an A of 1 everywhere is no coverage.
+  if (exr.has("A") && std::any_of(exr.channels["A"].begin(), exr.channels["A"].end(), [](float a) { return a != 1.0f; }))
+    frame.alpha = exr.channels["A"];
   for (const ExrLayer& layer : exr_layers()) {
     frame.*layer.pixels = exr.interleave(layer.channels);
     if (!(frame.*layer.pixels).empty()) used.insert(layer.channels.begin(), layer.channels.end());

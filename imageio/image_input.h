@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "imageio/header_attribute.h"
 #include "renderer/film/film.h"
 
 namespace tessera {
@@ -22,6 +23,7 @@ struct ExrChannels {
   FrameWindow window;  // where the pixels lie in the file's display window (a crop)
   std::map<std::string, std::vector<float>> channels;  // by name, one float per pixel, row-major
   std::string sampler;  // the header's `sampler` (tessera's frames name theirs); empty: none
+  std::vector<HeaderAttribute> attributes;  // the header's, but its layout (exr_header.h)
 
   bool has(const std::string& name) const { return channels.count(name) != 0; }
   // Interleaves the named channels (3 per pixel for {"R", "G", "B"}). Empty when any is missing.

@@ -20,6 +20,7 @@
 #include "imageio/exr_header.h"
 #include "imageio/exr_layers.h"
 #include "imageio/file_output.h"
+#include "imageio/frame_layers.h"
 #include "imageio/image_codec.h"
 #include "imageio/resume_layers.h"
 
@@ -64,26 +65,18 @@ void add_channels(std::vector<ChannelData>& out, const std::vector<float>& src, 
 
 // Every attribute of `source`'s header but its layout, which is the new file's own.
 void copy_attributes(const std::string& source, Imf::Header& header) {
-  static const std::set<std::string> kLayout = {"channels", "compression", "dataWindow", "displayWindow", "lineOrder",
-                                                "pixelAspectRatio", "screenWindowCenter", "screenWindowWidth",
-                                                "tiles", "type", "name", "version", "chunkCount",
-                                                "tesseraResume", "tesseraFingerprint"};  // no resume layers here
   Imf::InputFile in(source.c_str());
-  for (auto it = in.header().begin(); it != in.header().end(); ++it)
-    if (!kLayout.count(it.name())) header.insert(it.name(), it.attribute());
+  for (auto it = in.header().begin(); it != in.header().end(); ++it) {
+    const std::string name = it.name();
+    if (!is_layout_attribute(name) && name != "tesseraResume" && name != "tesseraFingerprint")  // no resume layers here
+      header.insert(name, it.attribute());
+  }
 }
 
 std::vector<ChannelData> exr_channels(const FrameImage& img) {
   std::vector<ChannelData> channels;
-  for (const ExrLayer& layer : exr_layers()) {
-    const std::vector<float>& pixels = img.*layer.pixels;
-    if (!pixels.empty()) add_channels(channels, pixels, static_cast<int>(layer.channels.size()), layer.channels);
-  }
-  if (!img.alpha.empty()) add_channels(channels, img.alpha, 1, {"A"});
-  else channels.push_back({"A", std::vector<float>(static_cast<std::size_t>(img.width) * img.height, 1.0f), {}});
-  if (!img.pixel_samples.empty())
-    add_channels(channels, std::vector<float>(img.pixel_samples.begin(), img.pixel_samples.end()), 1, {kSamplesChannel});
-  for (const auto& [name, values] : img.extra_channels) add_channels(channels, values, 1, {name});
+  for (const ImageLayer& layer : frame_layers(img))
+    add_channels(channels, layer.pixels, static_cast<int>(layer.channels.size()), layer.channels);
   return channels;
 }
 
@@ -140,8 +133,10 @@ void write_exr(const std::string& path, const FrameImage& img, const ImageWriteP
   const Imath::Box2i data_window = exr_data_window(params.window, img.width, img.height);
   Imf::Header header(exr_display_window(params.window, img.width, img.height), data_window);
   header.compression() = Imf::ZIP_COMPRESSION;
-  insert_frame_metadata(header, params.metadata, img.samples_per_pixel);
+  if (params.render_metadata) insert_frame_metadata(header, params.metadata, img.samples_per_pixel);
+  else insert_provenance(header, params.metadata);
   if (!params.header_from.empty()) copy_attributes(params.header_from, header);
+  insert_attributes(header, params.attributes);
   Imf::FrameBuffer fb;
   insert_channels(channels, params.half, data_window, img.width, header, fb);
   if (params.resume_film) return write_resumable_exr(path, header, fb, img.height, params);

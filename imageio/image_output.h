@@ -11,6 +11,7 @@
 #include <glm/glm.hpp>
 
 #include "imageio/display_transform.h"
+#include "imageio/header_attribute.h"
 #include "renderer/film/film.h"
 
 namespace tessera {
@@ -68,6 +69,11 @@ struct ImageWriteParams {
   // EXR: also copy the header attributes of this EXR (not its layout: channels, windows,
   // compression), over tessera's own. A denoised frame keeps its render's metadata.
   std::string header_from;
+  // EXR: false writes only who made the file (software, version, chromaticities, capDate,
+  // owner, comments) and `attributes`, not the render's settings: layers that tessera did not
+  // render (the Python module's tessera.write_exr).
+  bool render_metadata = true;
+  std::vector<HeaderAttribute> attributes;  // EXR: written last, over tessera's own
 };
 
 // Throws OutputPathError when `path` cannot be written: unknown format, missing or read-only

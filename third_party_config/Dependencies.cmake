@@ -85,6 +85,19 @@ find_package(fmt REQUIRED)
 # nlohmann-json: every JSON document tessera reads or writes (nlohmann-json3-dev), header only.
 find_package(nlohmann_json REQUIRED)
 
+if(TESSERA_PYTHON)
+  # The Python module: pybind11 (pybind11-dev) over CPython's headers (python3-dev); numpy
+  # arrays in and out (python3-numpy), pytest for its tests (python3-pytest).
+  # Debian's Python 3, whose numpy and pytest the packages install, even when another python3
+  # comes first on PATH.
+  if(NOT Python3_EXECUTABLE AND EXISTS /usr/bin/python3)
+    set(Python3_EXECUTABLE /usr/bin/python3 CACHE FILEPATH "The Python the module is built for")
+  endif()
+  set(PYBIND11_FINDPYTHON ON)
+  find_package(Python3 REQUIRED COMPONENTS Interpreter Development.Module)
+  find_package(pybind11 REQUIRED CONFIG)
+endif()
+
 if(TESSERA_BUILD_TESTS)
   # GoogleTest via CTest (libgtest-dev).
   find_package(GTest REQUIRED)

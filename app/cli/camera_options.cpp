@@ -1,5 +1,6 @@
 #include "app/cli/camera_options.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <vector>
@@ -36,6 +37,21 @@ vec3 parse_point(const char* option, const std::string& text) {
 }
 
 }  // namespace
+
+std::optional<Orbit> command_line_orbit(const RenderOptions& o) {
+  if (o.orbit.empty()) return std::nullopt;
+  const char* option = "--orbit";
+  const bool with_distance = std::count(o.orbit.begin(), o.orbit.end(), ',') == 2;
+  const std::vector<float> v =
+      parse_numbers(option, o.orbit, with_distance ? 3 : 2, with_distance ? "AZIMUTH,ELEVATION,DISTANCE" : "AZIMUTH,ELEVATION");
+  const Orbit orbit{v[0], v[1], with_distance ? v[2] : 0.0f};
+  if (!(std::abs(orbit.elevation) < 90.0f))
+    throw UsageError(fmt::format("{} {}: the elevation must lie strictly between -90 and 90 degrees (at the poles "
+                                 "the view is along up)", option, o.orbit));
+  if (with_distance && !(orbit.distance > 0.0f))
+    throw UsageError(fmt::format("{} {}: the distance must be positive", option, o.orbit));
+  return orbit;
+}
 
 std::optional<LookAt> command_line_look_at(const RenderOptions& o, const vec3& scene_center) {
   LookAt view;

@@ -1,5 +1,6 @@
 #include "app/cli/command_parser.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <string>
@@ -66,30 +67,45 @@ std::string did_you_mean(const std::string& typed, const std::vector<std::string
 }
 
 // A first argument that is no command (and no option of tessera's own): the nearest command.
-int check_command_name(CLI::App& app, const std::string& first) {
-  if (first.empty()) return -1;
+// Empty when it is one.
+std::string command_name_problem(CLI::App& app, const std::string& first) {
+  if (first.empty()) return "";
   if (first[0] == '-') {
     const std::string name = first.substr(0, first.find('='));
     const std::vector<std::string> names = option_names(app);
-    if (std::find(names.begin(), names.end(), name) != names.end()) return -1;
-    return usage_error(fmt::format("unknown option {}{}", name, did_you_mean(name, names)));
+    if (std::find(names.begin(), names.end(), name) != names.end()) return "";
+    return fmt::format("unknown option {}{}", name, did_you_mean(name, names));
   }
   const std::vector<std::string> names = command_names(app);
-  if (std::find(names.begin(), names.end(), first) != names.end()) return -1;
-  return usage_error(fmt::format("unknown command '{}'{}", first, did_you_mean(first, names)));
+  if (std::find(names.begin(), names.end(), first) != names.end()) return "";
+  return fmt::format("unknown command '{}'{}", first, did_you_mean(first, names));
+}
+
+int check_command_name(CLI::App& app, const std::string& first) {
+  const std::string problem = command_name_problem(app, first);
+  return problem.empty() ? -1 : usage_error(problem);
 }
 
 // An argument the command did not expect: the nearest option when it looks like one.
-int explain_extras(CLI::App& app, const CLI::ExtrasError& e) {
+std::string explain_extras(CLI::App& app, const CLI::ExtrasError& e) {
   const std::vector<CLI::App*> chosen = app.get_subcommands();
   CLI::App& command = chosen.empty() ? app : *chosen.back();
   for (const std::string& arg : command.remaining()) {
     if (arg.size() < 2 || arg[0] != '-' || std::isdigit(static_cast<unsigned char>(arg[1]))) continue;
     const std::string name = arg.substr(0, arg.find('='));
-    return usage_error(fmt::format("{}: unknown option {}{}", command.get_name(), name,
-                                   did_you_mean(name, option_names(command))));
+    return fmt::format("{}: unknown option {}{}", command.get_name(), name, did_you_mean(name, option_names(command)));
   }
-  return usage_error(e.what());
+  return e.what();
+}
+
+// The message for a parse error other than a call for help or the version.
+std::string parse_problem(CLI::App& app, const CLI::ParseError& e) {
+  if (const auto* extras = dynamic_cast<const CLI::ExtrasError*>(&e)) return explain_extras(app, *extras);
+  const std::string text = e.what();
+  // CLI11: "--spp: At Most 1 required but received 2"
+  const std::size_t colon = dynamic_cast<const CLI::ArgumentMismatch*>(&e) ? text.find(": At Most 1 required")
+                                                                            : std::string::npos;
+  return colon == std::string::npos ? text : text.substr(0, colon) + ": given more than once";
 }
 
 }  // namespace
@@ -116,14 +132,8 @@ int parse_command_line(CLI::App& app, int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
-  } catch (const CLI::ExtrasError& e) {
-    return explain_extras(app, e);
-  } catch (const CLI::ArgumentMismatch& e) {  // CLI11: "--spp: At Most 1 required but received 2"
-    const std::string text = e.what();
-    const std::size_t colon = text.find(": At Most 1 required");
-    return usage_error(colon == std::string::npos ? text : text.substr(0, colon) + ": given more than once");
   } catch (const CLI::ParseError& e) {
-    return usage_error(e.what());
+    return usage_error(parse_problem(app, e));
   }
   if (app.got_subcommand("version")) {
     fmt::print("{}\n", version_line());
@@ -138,6 +148,18 @@ int parse_command_line(CLI::App& app, int argc, char** argv) {
   if (code >= 0) return code;
   fmt::print("{}", app.get_subcommand(topic)->help(app.get_name()));
   return kExitSuccess;
+}
+
+void parse_arguments(CLI::App& app, std::vector<std::string> args) {
+  check_numbers(app);
+  if (const std::string problem = command_name_problem(app, args.empty() ? "" : args[0]); !problem.empty())
+    throw UsageError(problem);
+  std::reverse(args.begin(), args.end());  // CLI11 takes them last first
+  try {
+    app.parse(args);
+  } catch (const CLI::ParseError& e) {
+    throw UsageError(parse_problem(app, e));
+  }
 }
 
 }  // namespace tessera

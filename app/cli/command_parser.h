@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 
 #include <string>
+#include <vector>
 
 namespace tessera {
 
@@ -16,5 +17,10 @@ std::string version_line();
 // added), then parses. Returns -1 when a command is to run; else the exit code, after the
 // help or version (0) or a one-line error and a pointer to --help (2).
 int parse_command_line(CLI::App& app, int argc, char** argv);
+
+// Parses `args` (a command and its arguments, as after the program's name) with the same
+// checks, and throws UsageError with the message parse_command_line would print: how the
+// Python module reads a render's options.
+void parse_arguments(CLI::App& app, std::vector<std::string> args);
 
 }  // namespace tessera

@@ -63,6 +63,7 @@ struct RenderOptions {
   std::string pixel;  // --pixel X,Y: trace that pixel alone and print its paths
   std::string look_at;  // --look-at EYE,TARGET,UP (nine numbers)
   std::string camera_position, camera_target;  // X,Y,Z each
+  std::string orbit;  // --orbit AZIMUTH,ELEVATION[,DISTANCE]
   // The options the command line gave (long names, "--width"; "scene" for the scene file):
   // --resume takes the others from the file; the warnings about options without effect
   // name them.

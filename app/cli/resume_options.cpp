@@ -84,6 +84,7 @@ const std::vector<StoredOption>& stored_options() {
       option("--look-at", Role::pixels, &O::look_at),
       option("--camera-position", Role::pixels, &O::camera_position),
       option("--camera-target", Role::pixels, &O::camera_target),
+      option("--orbit", Role::pixels, &O::orbit),
       option("--variant", Role::resolved, &O::variant),
       option("--animation", Role::pixels, &O::animation),
       option("--time", Role::pixels, &O::time),

@@ -163,6 +163,12 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
                   "With --camera-position: the point X,Y,Z the camera looks at [default: the scene's centre]")
       ->excludes("--camera")->excludes(look_at)->needs(position)
       ->group("Scene and camera");
+  cmd->add_option("--orbit", o.orbit,
+                  "Camera circling the scene's centre: AZIMUTH,ELEVATION[,DISTANCE], degrees about +Y from +Z and "
+                  "above the ground plane, e.g. 30,20 (0,0: the automatic camera's place; distance: the automatic "
+                  "camera's, which frames the scene)")
+      ->excludes("--camera")->excludes(look_at)->excludes(position)
+      ->group("Scene and camera");
   cmd->add_option("--fov", o.fov, "Vertical field of view in degrees, overriding a perspective camera's")
       ->check(CLI::Range(0.01f, 179.0f))
       ->group("Scene and camera");

@@ -86,9 +86,10 @@ void plan_image(const RenderOptions& o, const SceneDescription& scene, const Bou
   s.height = o.height;
   const Bounds3& bounds = framing ? *framing : scene.bounds;
   const std::optional<LookAt> look_at = command_line_look_at(o, bounds.empty() ? vec3(0.0f) : bounds.center());
+  const std::optional<Orbit> orbit = command_line_orbit(o);
   const Camera* scene_camera = nullptr;
   Camera probe;
-  if (!look_at && (!scene.cameras.empty() || !o.camera.empty())) {
+  if (!look_at && !orbit && (!scene.cameras.empty() || !o.camera.empty())) {
     probe = choose_camera(scene, o.camera, 16, 9, framing);
     scene_camera = &probe;
   }
@@ -99,8 +100,9 @@ void plan_image(const RenderOptions& o, const SceneDescription& scene, const Bou
   }
   if (static_cast<double>(s.width) * s.height > (1u << 28))
     throw UsageError(fmt::format("--width {} --height {}: more than 268 million pixels", s.width, s.height));
-  plan.camera = look_at ? look_at_camera(look_at->eye, look_at->target, look_at->up, s.width, s.height)
-                        : choose_camera(scene, o.camera, s.width, s.height, framing);
+  if (look_at) plan.camera = look_at_camera(look_at->eye, look_at->target, look_at->up, s.width, s.height);
+  else if (orbit) plan.camera = orbit_camera(bounds, orbit->azimuth, orbit->elevation, orbit->distance, s.width, s.height);
+  else plan.camera = choose_camera(scene, o.camera, s.width, s.height, framing);
   plan.camera_params = {o.fov, o.aperture, o.focus_distance};
   if (!o.crop.empty()) {
     const Tile region = crop_region(o.crop, s.width, s.height);
@@ -186,6 +188,8 @@ FramePlan plan_frame(const RenderOptions& o, const GltfLoadResult& loaded, const
     plan.material_variant_name = loaded.material_variants[loaded.material_variant];
   }
   plan.animated = !loaded.playing.empty();
+  plan.pose = fmt::format("{}\n{}\n{}\n{}\n{}\n{}\n{}", o.scene, o.variant, o.animation, scene_time(o), o.shutter, o.fps,
+                          o.motion_steps);
   plan.output = frame_output_path(o);
   plan.preview = o.preview;
   plan.display = plan_display(o.display);
@@ -215,16 +219,20 @@ FramePlan plan_frame(const RenderOptions& o, const GltfLoadResult& loaded, const
 BuiltFrame build_frame(LoadedScene loaded, const FramePlan& plan, SceneCache* cache) {
   const auto start = std::chrono::steady_clock::now();
   BuiltFrame built;
-  if (cache && cache->scene && same_environment(cache->environment, plan.environment) &&
-      cache->scene->update(loaded.gltf.scene)) {
+  const bool cached = cache && cache->scene && same_environment(cache->environment, plan.environment);
+  if (cached && cache->pose == plan.pose) {
+    built.scene = cache->scene;  // nothing moved: the scene as it is
+    built.updated = true;
+  } else if (cached && cache->scene->update(loaded.gltf.scene)) {
     built.scene = cache->scene;
     built.updated = true;
+    cache->pose = plan.pose;
   } else {
     if (cache) cache->scene.reset();  // its memory is free before the new scene takes its own
     EnvironmentParams environment = plan.environment;
     if (!environment.image_path.empty()) environment.image = read_environment_image(environment.image_path);
     built.scene = std::make_shared<RenderScene>(std::move(loaded.gltf.scene), environment);
-    if (cache) *cache = {built.scene, environment};
+    if (cache) *cache = {built.scene, environment, plan.pose};
   }
   built.seconds = seconds_since(start);
   const RenderSettings& s = plan.settings;
@@ -287,13 +295,14 @@ ImageWriteParams frame_write_params(const RenderOptions& o, const FramePlan& pla
   return write;
 }
 
+double denoise_planned_frame(const FramePlan& plan, FrameImage& image, FrameMetadata& metadata) {
+  metadata.denoised = true;
+  return denoise_frame(image, denoise_params(plan.settings.threads, sampler_name(plan.settings.sampler)));
+}
+
 double finish_frame(const FramePlan& plan, FrameImage& image, ImageWriteParams params, const FilmState& film,
                     const std::string& resume_text, bool denoise) {
-  double seconds = 0.0;
-  if (denoise) {
-    seconds = denoise_frame(image, denoise_params(plan.settings.threads, sampler_name(plan.settings.sampler)));
-    params.metadata.denoised = true;
-  }
+  const double seconds = denoise ? denoise_planned_frame(plan, image, params.metadata) : 0.0;
   if (params.metadata.partial && is_exr_path(plan.output)) {
     params.resume_film = &film;
     params.resume_settings = resume_text;

@@ -59,6 +59,9 @@ struct FramePlan {
   std::string material_variant_name;
   bool animated = false;  // some animation posed the scene (at scene_time(o))
   DisplayParams display;  // the view of display-format outputs, checked buildable
+  // What posed the scene: file scene, variant, animations, time, shutter. Two plans with the
+  // same pose and environment render the same RenderScene.
+  std::string pose;
 };
 // `framing`: the bounds the automatic camera frames instead of the scene's (null: the scene's).
 FramePlan plan_frame(const RenderOptions& o, const GltfLoadResult& loaded, const Bounds3* framing = nullptr);
@@ -69,11 +72,13 @@ FramePlan plan_frame(const RenderOptions& o, const GltfLoadResult& loaded, const
 struct SceneCache {
   std::shared_ptr<RenderScene> scene;
   EnvironmentParams environment;
+  std::string pose;  // FramePlan::pose of the scene
 };
 
 // Stage 3: the BVH, textures and lights (the description is moved in), and the camera. With
-// a cache, the cached scene is updated to this frame where it can be, else built anew (and
-// cached). Either way the image is the same, bit for bit.
+// a cache, the cached scene is used as it is when the pose and environment are the same (only
+// the camera or the sampling changed), else updated to this frame where it can be, else built
+// anew (and cached). Either way the image is the same, bit for bit.
 struct BuiltFrame {
   std::shared_ptr<RenderScene> scene;
   RenderCamera camera;
@@ -86,6 +91,10 @@ BuiltFrame build_frame(LoadedScene loaded, const FramePlan& plan, SceneCache* ca
 // neither converged nor at --spp.
 ImageWriteParams frame_write_params(const RenderOptions& o, const FramePlan& plan, const RenderCamera& camera,
                                     const RenderStats& stats, bool partial);
+
+// Stage 5: denoises a frame rendered with `plan` and marks its metadata so. Returns the seconds
+// it took.
+double denoise_planned_frame(const FramePlan& plan, FrameImage& image, FrameMetadata& metadata);
 
 // Stage 5 and 6: denoises a finished (not interrupted) frame when planned, then writes -o and
 // --preview; a partial EXR also carries the film and settings to resume from. Returns the

@@ -138,16 +138,35 @@ float film_tan_half_y(float aspect) { return aspect >= 1.0f ? 18.0f / (50.0f * a
 
 }  // namespace
 
-Camera auto_camera(const Bounds3& bounds, int width, int height) {
+namespace {
+
+// How far from the bounds' centre the automatic lens sees the whole bounding sphere.
+float framing_distance(const Bounds3& bounds, int width, int height) {
   const float aspect = static_cast<float>(width) / static_cast<float>(height);
-  const vec3 center = bounds.empty() ? vec3(0.0f) : bounds.center();
   const float radius = bounds.empty() ? 1.0f : std::max(0.5f * glm::length(bounds.diagonal()), 1e-6f);
   const float tan_half_y = film_tan_half_y(aspect);
-  const float tan_half_min = std::min(tan_half_y, tan_half_y * aspect);
+  return radius / std::min(tan_half_y, tan_half_y * aspect);
+}
+
+}  // namespace
+
+Camera auto_camera(const Bounds3& bounds, int width, int height) {
+  const vec3 center = bounds.empty() ? vec3(0.0f) : bounds.center();
   Camera cam;
   cam.name = "automatic";
-  cam.yfov = 2.0f * std::atan(tan_half_y);
-  cam.camera_to_world = glm::translate(glm::mat4(1.0f), center + vec3(0, 0, radius / tan_half_min));
+  cam.yfov = 2.0f * std::atan(film_tan_half_y(static_cast<float>(width) / static_cast<float>(height)));
+  cam.camera_to_world = glm::translate(glm::mat4(1.0f), center + vec3(0, 0, framing_distance(bounds, width, height)));
+  return cam;
+}
+
+Camera orbit_camera(const Bounds3& bounds, float azimuth_degrees, float elevation_degrees, float distance, int width,
+                    int height) {
+  const vec3 center = bounds.empty() ? vec3(0.0f) : bounds.center();
+  const float azimuth = glm::radians(azimuth_degrees), elevation = glm::radians(elevation_degrees);
+  const vec3 direction(std::cos(elevation) * std::sin(azimuth), std::sin(elevation), std::cos(elevation) * std::cos(azimuth));
+  const float d = distance > 0.0f ? distance : framing_distance(bounds, width, height);
+  Camera cam = look_at_camera(center + d * direction, center, vec3(0.0f, 1.0f, 0.0f), width, height);
+  cam.name = "orbit";
   return cam;
 }
 

@@ -55,6 +55,14 @@ RenderCamera make_camera(const Camera& cam, int width, int height, const CameraP
 // sphere (a 50 mm lens on a 36 mm film, as the Cycles comparison script sets up).
 Camera auto_camera(const Bounds3& bounds, int width, int height);
 
+// A perspective camera with the automatic camera's lens that circles the bounds' centre: at
+// `azimuth_degrees` about +Y from +Z (towards +X) and `elevation_degrees` above the XZ plane,
+// looking at the centre with +Y up, `distance` away (0: the automatic camera's, which frames
+// the bounding sphere). Azimuth and elevation 0 is the automatic camera's place. The caller
+// keeps the elevation strictly between -90 and 90.
+Camera orbit_camera(const Bounds3& bounds, float azimuth_degrees, float elevation_degrees, float distance, int width,
+                    int height);
+
 // A perspective camera at `eye` looking at `target` with `up` upwards in the image, with the
 // automatic camera's lens (50 mm on 36 mm film across the longer side). The caller checks
 // that eye != target and that up is not along the view.
