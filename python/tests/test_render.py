@@ -41,6 +41,16 @@ def test_the_same_options_give_the_command_lines_pixels(run_cli, tmp_path, optio
         assert np.array_equal(layers.metadata[key], expected.metadata[key]), key
 
 
+@pytest.mark.parametrize("camera", [0, "Camera"])
+def test_a_camera_of_the_file_by_index_or_name_gives_the_command_lines_pixels(run_cli, tmp_path, camera):
+    layers = tessera.Scene(VARIANTS).render(width=32, height=24, spp=2, camera=camera, variant="red")
+    expected = cli_layers(run_cli, tmp_path, VARIANTS,
+                          ["--width", "32", "--height", "24", "--spp", "2", "--camera", str(camera), "--variant", "red"])
+    assert np.array_equal(layers["RGBA"], expected["RGBA"])
+    assert layers.metadata["camera"] == expected.metadata["camera"] == "Camera"
+    assert layers.metadata["materialVariant"] == "red"
+
+
 def test_denoised_render_equals_the_command_lines(run_cli, tmp_path):
     layers = tessera.Scene(BOX).render(width=32, height=32, spp=8, denoise=True)
     expected = cli_layers(run_cli, tmp_path, BOX, ["--width", "32", "--height", "32", "--spp", "8", "--denoise"])
