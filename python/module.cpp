@@ -1,4 +1,4 @@
-// tessera._native: what the Python package (python/tessera/__init__.py) is built on. A session
+// tessera._native (and _native_x86_64_v3): what the Python package (python/tessera/__init__.py) is built on. A session
 // renders in memory (app/session/frame_session.h) on a thread of its own while the calling
 // thread, without the GIL, waits; every 50 ms it takes the GIL back to report progress and to
 // let Python see a Ctrl-C, which cancels the render (tiles under way finish) and raises
@@ -19,6 +19,7 @@
 #include <fmt/format.h>
 
 #include "app/cli/exit_codes.h"
+#include "app/isa_dispatch.h"
 #include "app/session/frame_session.h"
 #include "imageio/exr_header.h"
 #include "imageio/frame_layers.h"
@@ -227,7 +228,8 @@ PyObject* new_exception(py::module_& m, const char* name, PyObject* bases, const
 }  // namespace
 }  // namespace tessera
 
-PYBIND11_MODULE(_native, m) {
+// _native, or _native_x86_64_v3 for the AVX2/FMA build (python/CMakeLists.txt).
+PYBIND11_MODULE(TESSERA_PYTHON_MODULE, m) {
   using namespace tessera;
   m.doc() = "tessera's native part: see the tessera package.";
   error_type = new_exception(m, "Error", PyExc_Exception, "Any error tessera reports.");
@@ -237,9 +239,11 @@ PYBIND11_MODULE(_native, m) {
                                    "The scene file cannot be read, or is not glTF tessera can render.");
   file_error_type = new_exception(m, "FileError", py::make_tuple(py::handle(error_type), py::handle(PyExc_OSError)).release().ptr(),
                                   "An image file cannot be read or written.");
-  py::register_exception_translator(&translate_exception);
+  // Local to this module: the generic and the AVX2/FMA module are both loaded (the first
+  // tells whether the CPU runs the second), each with its own copy of tessera's types.
+  py::register_local_exception_translator(&translate_exception);
 
-  py::class_<FrameSession>(m, "Session")
+  py::class_<FrameSession>(m, "Session", py::module_local())
       .def(py::init([](const std::string& path) {
              py::gil_scoped_release release;
              return std::make_unique<FrameSession>(path);
@@ -251,4 +255,5 @@ PYBIND11_MODULE(_native, m) {
   m.def("write_exr", &write_exr, py::arg("path"), py::arg("layers"), py::arg("metadata"), py::arg("half") = false);
   m.def("version", [] { return tessera_version(); });
   m.def("isa", [] { return std::string(compiled_isa()); });
+  m.def("cpu_runs_x86_64_v3", &cpu_runs_x86_64_v3);
 }

@@ -13,13 +13,37 @@ is --look-at with nine numbers, aovs=[...] is --aov, True is a flag. The same op
 the same pixels as the command line, bit for bit. docs/python.md has the whole story.
 """
 
+import importlib
 import numbers
 import os
 import threading
 import warnings
 
-from ._native import Error, FileError, SceneLoadError, UsageError, isa, version
-from . import _native
+
+def _native_for_this_cpu():
+    """The native part built for the instruction set TESSERA_ISA asks for, as the tessera program
+    chooses its build: auto (or unset) the fastest this CPU runs, x86-64 or x86-64-v3."""
+    from . import _native as generic
+    wanted = os.environ.get("TESSERA_ISA") or "auto"
+    if wanted not in ("auto", "x86-64", "x86-64-v3"):
+        raise ImportError(f"TESSERA_ISA={wanted}: expected auto, x86-64 or x86-64-v3")
+    if wanted == "x86-64":
+        return generic
+    if not generic.cpu_runs_x86_64_v3():
+        if wanted == "x86-64-v3":
+            raise ImportError("TESSERA_ISA=x86-64-v3, but this CPU lacks AVX2, FMA or BMI2")
+        return generic
+    try:
+        return importlib.import_module("._native_x86_64_v3", __name__)
+    except ImportError:
+        if wanted == "x86-64-v3":
+            raise
+        return generic  # a build without it
+
+
+_native = _native_for_this_cpu()
+Error, FileError, SceneLoadError, UsageError = _native.Error, _native.FileError, _native.SceneLoadError, _native.UsageError
+isa, version = _native.isa, _native.version
 
 __all__ = ["Scene", "Layers", "read_exr", "write_exr", "Error", "UsageError", "SceneLoadError", "FileError",
            "TesseraWarning", "version", "isa"]

@@ -1,6 +1,10 @@
 """tessera.Scene.render against the command line: the same options give the same pixels, bit for
 bit, and every layer has the EXR's name, shape and type."""
 
+import os
+import subprocess
+import sys
+
 import numpy as np
 import pytest
 
@@ -119,3 +123,30 @@ def test_an_orbit_places_the_camera_on_its_sphere_around_the_centre():
     expected = distance * np.array([np.cos(e) * np.sin(a), np.sin(e), np.cos(e) * np.cos(a)])
     assert np.allclose(eye, expected, atol=1e-5)
     assert layers.metadata["camera"] == "orbit"
+
+
+def run_python(code, isa, *args):
+    return subprocess.run([sys.executable, "-c", code, *map(str, args)], env={**os.environ, "TESSERA_ISA": isa},
+                          capture_output=True, text=True, timeout=120)
+
+
+def test_the_generic_and_the_avx2_builds_give_the_same_pixels(tmp_path):
+    code = ("import sys, numpy, tessera; numpy.save(sys.argv[2], tessera.Scene(sys.argv[1]).render("
+            "width=32, height=24, spp=4, seed=2, aovs=['normal'])['RGBA']); print(tessera.isa())")
+    generic = run_python(code, "x86-64", BOX, tmp_path / "generic.npy")
+    chosen = run_python(code, "auto", BOX, tmp_path / "auto.npy")
+    assert generic.returncode == 0 and chosen.returncode == 0, generic.stderr + chosen.stderr
+    assert generic.stdout.strip() == "x86-64"
+    if chosen.stdout.strip() == "x86-64":
+        pytest.skip("this CPU (or build) has only the generic build")
+    assert chosen.stdout.strip() == "x86-64-v3"
+    assert np.array_equal(np.load(tmp_path / "generic.npy"), np.load(tmp_path / "auto.npy"))
+
+
+def test_an_unknown_instruction_set_is_refused_as_the_program_refuses_it(tessera_exe):
+    imported = run_python("import tessera", "pentium")
+    assert imported.returncode != 0
+    program = subprocess.run([tessera_exe, "--version"], env={**os.environ, "TESSERA_ISA": "pentium"},
+                             capture_output=True, text=True)
+    message = program.stderr.splitlines()[0].removeprefix("tessera: error: ")
+    assert imported.stderr.strip().splitlines()[-1] == "ImportError: " + message
